@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Installs the Debian 12 packages wavebench needs. Idempotent: installs only what is missing.
+# Usage: scripts/install-deps.sh [--with-vm]   (--with-vm adds what the vcan VM runner needs)
+set -euo pipefail
+
+packages=(
+  build-essential cmake ninja-build pkg-config git clang-format
+  libeigen3-dev libfftw3-dev libspdlog-dev libfmt-dev libboost-dev libboost-system-dev
+  libmodbus-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev
+  libgtest-dev libgmock-dev googletest libbenchmark-dev
+  clang libclang-rt-14-dev
+  can-utils mbpoll python3-can python3-pymodbus python3-scipy python3-numpy
+)
+if [[ "${1:-}" == "--with-vm" ]]; then
+  packages+=(qemu-system-x86 busybox-static cpio kmod)
+fi
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then
+  command -v sudo >/dev/null || { echo "install-deps: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  SUDO="sudo"
+fi
+echo "install-deps: installing ${missing[*]}"
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null

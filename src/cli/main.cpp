@@ -1,0 +1,25 @@
+// wavebench: the command-line tool of the strain-wave gear test bench.
+#include <exception>
+#include <iostream>
+
+#include "commands.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"wavebench - strain-wave gear test bench and digital twin"};
+  app.require_subcommand(1);
+  wavebench::cli::ExitStatus status;
+  wavebench::cli::register_sim_commands(app, status);
+  wavebench::cli::register_can_commands(app, status);
+  wavebench::cli::register_brake_commands(app, status);
+  wavebench::cli::register_simbench_commands(app, status);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  } catch (const std::exception& e) {
+    std::cerr << "wavebench: " << e.what() << "\n";
+    return 1;
+  }
+  return status.code;
+}
