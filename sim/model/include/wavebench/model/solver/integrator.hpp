@@ -55,3 +55,5 @@ class Integrator {
 
   virtual const IntegratorCounters& counters() const = 0;
 };
+
+}  // namespace wavebench::model::solver
