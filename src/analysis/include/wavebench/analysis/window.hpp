@@ -1,0 +1,20 @@
+#pragma once
+// Spectral windows and their coherent gain, so a windowed sine reads its true amplitude.
+
+#include <cstddef>
+#include <vector>
+
+#include "wavebench/analysis/analysis_options.hpp"
+
+namespace wavebench::analysis {
+
+// Periodic (DFT-even) coefficients: the window's period is n, so the spectrum of a sine on a
+// bin has the textbook main-lobe shape.
+std::vector<double> window_coefficients(Window window, std::size_t n);
+
+// Sum of the coefficients divided by n: the factor a sine's line is scaled by.
+double coherent_gain(Window window);
+
+const char* window_name(Window window);
+
+}  // namespace wavebench::analysis
