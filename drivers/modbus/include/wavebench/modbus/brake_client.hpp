@@ -1,0 +1,76 @@
+#pragma once
+// Commands and readback of the powder-brake controller through the configured register map.
+// Owns one libmodbus context: use a BrakeClient from one thread only (a second thread makes its
+// own BrakeClient). A lost link is reopened on the next call, no sooner than the backoff allows.
+
+#include <chrono>
+#include <cstdint>
+#include <string>
+
+#include "wavebench/modbus/brake_config.hpp"
+#include "wavebench/modbus/brake_status.hpp"
+#include "wavebench/modbus/modbus_link.hpp"
+#include "wavebench/modbus/reconnect_backoff.hpp"
+
+namespace wavebench::modbus {
+
+enum class BrakeMode { current, torque };
+
+struct BrakeReadback {
+  BrakeStatus status;
+  double coil_current_a = 0.0;
+  double torque_nm = 0.0;
+  double temperature_c = 0.0;
+  double slip_power_w = 0.0;
+  int alarm_code = 0;
+  std::string alarm_text;  // decoded status bits and alarm code
+};
+
+class BrakeClient {
+ public:
+  using Clock = std::chrono::steady_clock;
+
+  explicit BrakeClient(BrakeClientConfig config);
+  BrakeClient(const BrakeClient&) = delete;
+  BrakeClient& operator=(const BrakeClient&) = delete;
+
+  // Connects now, whatever the backoff says. Throws ModbusError.
+  void connect();
+  void disconnect() noexcept { link_.close(); }
+  bool connected() const noexcept { return link_.connected(); }
+
+  void enable();
+  void disable();
+  // Pulses the reset bit (set, then cleared) so controllers that act on an edge see one.
+  void reset_alarm();
+  void set_mode(BrakeMode mode);
+  // Ramp (units per second, 0 = step) then setpoint; checks both against the limits first
+  // and throws std::invalid_argument naming the value and the allowed range.
+  void set_setpoint(double value, BrakeMode mode, double ramp_per_s);
+  void set_watchdog(std::chrono::milliseconds timeout);
+  void heartbeat();  // writes the next counter value
+  BrakeReadback read();
+  uint16_t read_control();
+
+  // Time of the last transaction that got a valid reply (exception replies count: the
+  // controller is there). Construction time until then.
+  Clock::time_point last_success() const noexcept { return last_success_; }
+  const BrakeClientConfig& config() const noexcept { return config_; }
+  const ReconnectBackoff& backoff() const noexcept { return backoff_; }
+  uint64_t transactions() const noexcept { return link_.transactions(); }
+
+ private:
+  template <typename F>
+  auto with_link(F&& f);
+  double read_value(const RegisterSpec& spec);
+  void write_value(const RegisterSpec& spec, double value);
+  void write_control_bit(int bit, bool on);
+
+  BrakeClientConfig config_;
+  ModbusLink link_;
+  ReconnectBackoff backoff_;
+  Clock::time_point last_success_;
+  uint16_t heartbeat_counter_ = 0;
+};
+
+}  // namespace wavebench::modbus

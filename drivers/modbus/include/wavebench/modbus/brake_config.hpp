@@ -1,0 +1,62 @@
+#pragma once
+// Configuration of the brake client: where the controller is, how long to wait for it, how to
+// reconnect, the heartbeat, the safety limits and the register map. Loaded from YAML
+// (configs/bench/brake-default.yaml shows every key with its default).
+
+#include <chrono>
+#include <filesystem>
+#include <stdexcept>
+#include <string>
+
+#include "wavebench/modbus/modbus_endpoint.hpp"
+#include "wavebench/modbus/register_map.hpp"
+
+namespace YAML {
+class Node;
+}
+
+namespace wavebench::modbus {
+
+struct BrakeLinkConfig {
+  ModbusEndpoint endpoint;
+  int unit_id = 1;
+  std::chrono::milliseconds response_timeout{500};
+  std::chrono::milliseconds byte_timeout{100};
+  // No successful transaction for this long: the link is lost (safety event).
+  std::chrono::milliseconds link_loss_timeout{1000};
+  std::chrono::milliseconds reconnect_initial_backoff{100};
+  std::chrono::milliseconds reconnect_max_backoff{5000};
+};
+
+struct BrakeHeartbeatConfig {
+  std::chrono::milliseconds period{100};
+  // Written to the controller's watchdog register when the supervisor starts (0 = off).
+  std::chrono::milliseconds watchdog_timeout{500};
+};
+
+struct BrakeLimits {
+  double max_current_a = 2.0;
+  double max_torque_nm = 100.0;
+  double max_ramp_per_s = 1000.0;
+};
+
+struct BrakeClientConfig {
+  BrakeLinkConfig link;
+  BrakeHeartbeatConfig heartbeat;
+  BrakeLimits limits;
+  BrakeRegisterMap map;
+};
+
+// Bad config: the message names the key, the value and what was expected.
+class BrakeConfigError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// `node` is the brake section (keys link, timeouts, reconnect, heartbeat, limits, map); missing
+// keys keep their defaults, unknown keys are errors.
+BrakeClientConfig load_brake_config(const YAML::Node& node);
+// The file's top-level `brake:` section, or the whole file if it has none.
+BrakeClientConfig load_brake_config_file(const std::filesystem::path& path);
+
+}  // namespace wavebench::modbus

@@ -1,0 +1,50 @@
+#pragma once
+// One Modbus TCP or RTU connection on one libmodbus context. libmodbus contexts are not
+// thread-safe: a ModbusLink belongs to one thread; give every thread its own.
+//
+// Requests go out through libmodbus (framing, CRC, timeouts); every reply is checked here for
+// transaction id, unit id, function code and length, because libmodbus does not check the unit
+// id of a TCP reply and a wrong-unit reply must not be taken for the device's answer.
+
+#include <cstdint>
+#include <vector>
+
+#include "wavebench/modbus/brake_config.hpp"
+#include "wavebench/modbus/modbus_error.hpp"
+#include "wavebench/modbus/register_map.hpp"
+
+struct _modbus;
+
+namespace wavebench::modbus {
+
+class ModbusLink {
+ public:
+  explicit ModbusLink(BrakeLinkConfig config);
+  ~ModbusLink();
+  ModbusLink(const ModbusLink&) = delete;
+  ModbusLink& operator=(const ModbusLink&) = delete;
+
+  // Throws ModbusError(not_connected) naming the endpoint and the system's reason.
+  void connect();
+  void close() noexcept;
+  bool connected() const noexcept { return ctx_ != nullptr; }
+
+  std::vector<uint16_t> read_registers(RegisterTable table, int address, int count);
+  // One register with function 6, more with function 16.
+  void write_registers(int address, const std::vector<uint16_t>& values);
+
+  const BrakeLinkConfig& config() const noexcept { return config_; }
+  uint64_t transactions() const noexcept { return transactions_; }
+
+ private:
+  std::vector<uint8_t> transact(const std::vector<uint8_t>& pdu);
+  [[noreturn]] void fail_transport(int err, const char* during);
+
+  BrakeLinkConfig config_;
+  _modbus* ctx_ = nullptr;
+  uint16_t last_tid_ = 0;  // mirrors libmodbus's TCP transaction id (incremented per request)
+  bool flush_before_next_ = false;
+  uint64_t transactions_ = 0;
+};
+
+}  // namespace wavebench::modbus
