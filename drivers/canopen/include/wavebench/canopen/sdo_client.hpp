@@ -1,0 +1,137 @@
+#pragma once
+// SDO client for one server node: expedited and segmented upload and download, CiA 301 §7.2.4.
+// Every call comes in three forms: asynchronous (completion handler on the bus's io_context),
+// throwing (SdoError), and std::error_code&. The blocking forms run the bus's io_context until the
+// transfer completes, so they must not be called from a handler running on that io_context.
+// One transfer is on the wire at a time; further requests queue in order.
+
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <cstdint>
+#include <cstring>
+#include <deque>
+#include <functional>
+#include <span>
+#include <string>
+#include <system_error>
+#include <type_traits>
+#include <vector>
+
+#include "wavebench/can/can_bus.hpp"
+#include "wavebench/canopen/cob_id.hpp"
+#include "wavebench/canopen/sdo_abort.hpp"
+
+namespace wavebench::canopen {
+
+class SdoClient {
+ public:
+  using UploadHandler = std::function<void(std::error_code, std::vector<std::uint8_t>)>;
+  using DownloadHandler = std::function<void(std::error_code)>;
+
+  SdoClient(can::CanBus& bus, NodeId node,
+            std::chrono::milliseconds timeout = std::chrono::milliseconds(500));
+  ~SdoClient();
+  SdoClient(const SdoClient&) = delete;
+  SdoClient& operator=(const SdoClient&) = delete;
+
+  NodeId node() const noexcept { return node_; }
+  void set_timeout(std::chrono::milliseconds timeout) noexcept { timeout_ = timeout; }
+  std::chrono::milliseconds timeout() const noexcept { return timeout_; }
+  // Whether to send an abort frame when the server stays silent past the timeout (default on).
+  void set_abort_on_timeout(bool on) noexcept { abort_on_timeout_ = on; }
+
+  void async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler);
+  void async_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
+                      DownloadHandler handler);
+
+  std::vector<std::uint8_t> upload(std::uint16_t index, std::uint8_t sub);
+  std::vector<std::uint8_t> upload(std::uint16_t index, std::uint8_t sub,
+                                   std::error_code& ec) noexcept;
+  void download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data);
+  void download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data,
+                std::error_code& ec) noexcept;
+
+  // Typed access for arithmetic objects (little-endian, exact size checked on read).
+  template <typename T>
+  T read(std::uint16_t index, std::uint8_t sub) {
+    std::error_code ec;
+    T v = read<T>(index, sub, ec);
+    if (ec) throw SdoError(ec, node_, index, sub);
+    return v;
+  }
+  template <typename T>
+  T read(std::uint16_t index, std::uint8_t sub, std::error_code& ec) noexcept {
+    static_assert(std::is_arithmetic_v<T>);
+    const auto bytes = upload(index, sub, ec);
+    if (ec) return T{};
+    if (bytes.size() != sizeof(T)) {
+      ec = make_error_code(SdoAbort::length_mismatch);
+      return T{};
+    }
+    T v{};
+    std::memcpy(&v, bytes.data(), sizeof(T));  // host is little-endian, as CANopen
+    return v;
+  }
+  template <typename T>
+  void write(std::uint16_t index, std::uint8_t sub, T value) {
+    std::error_code ec;
+    write<T>(index, sub, value, ec);
+    if (ec) throw SdoError(ec, node_, index, sub);
+  }
+  template <typename T>
+  void write(std::uint16_t index, std::uint8_t sub, T value, std::error_code& ec) noexcept {
+    static_assert(std::is_arithmetic_v<T>);
+    std::uint8_t bytes[sizeof(T)];
+    std::memcpy(bytes, &value, sizeof(T));
+    download(index, sub, bytes, ec);
+  }
+
+  // Feeds a frame from the server (the client subscribes itself; exposed for fuzzing).
+  void on_frame(const can::Frame& frame) noexcept;
+  bool busy() const noexcept { return active_; }
+
+ private:
+  struct Request {
+    bool upload = true;
+    std::uint16_t index = 0;
+    std::uint8_t sub = 0;
+    std::vector<std::uint8_t> data;
+    UploadHandler on_upload;
+    DownloadHandler on_download;
+  };
+  enum class Phase { initiate, segment };
+
+  void start_next() noexcept;
+  void send_current() noexcept;
+  void send_frame(const can::Frame& frame) noexcept;
+  void arm_timer() noexcept;
+  void on_timeout() noexcept;
+  void send_abort(std::uint32_t code) noexcept;
+  void finish(std::error_code ec) noexcept;
+  void handle_upload(const can::Frame& frame) noexcept;
+  void handle_download(const can::Frame& frame) noexcept;
+  void send_download_segment() noexcept;
+  void fail_with_abort(SdoAbort code) noexcept;
+  template <typename Result, typename Call>
+  Result wait_for(Call&& start, std::error_code& ec) noexcept;
+
+  can::CanBus& bus_;
+  NodeId node_;
+  std::chrono::milliseconds timeout_;
+  bool abort_on_timeout_ = true;
+  boost::asio::steady_timer timer_;
+  can::CanBus::Subscription subscription_;
+  std::deque<Request> queue_;
+  bool active_ = false;
+  Request current_;
+  Phase phase_ = Phase::initiate;
+  bool toggle_ = false;
+  std::size_t offset_ = 0;         // download: bytes sent
+  std::size_t expected_size_ = 0;  // upload: size indicated by the server
+  bool size_indicated_ = false;
+  std::vector<std::uint8_t> received_;
+  can::Frame last_sent_;
+  std::uint64_t generation_ = 0;  // distinguishes a stale timer from the current one
+};
+
+}  // namespace wavebench::canopen

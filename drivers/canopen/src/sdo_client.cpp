@@ -1,0 +1,333 @@
+#include "wavebench/canopen/sdo_client.hpp"
+
+#include <algorithm>
+
+namespace wavebench::canopen {
+
+namespace {
+
+// Command specifiers (upper three bits of byte 0).
+constexpr std::uint8_t kCcsDownloadSegment = 0x00;
+constexpr std::uint8_t kCcsInitiateDownload = 0x20;
+constexpr std::uint8_t kCcsInitiateUpload = 0x40;
+constexpr std::uint8_t kCcsUploadSegment = 0x60;
+constexpr std::uint8_t kAbort = 0x80;
+constexpr std::uint8_t kScsUploadSegment = 0x00;
+constexpr std::uint8_t kScsDownloadSegment = 0x20;
+constexpr std::uint8_t kScsInitiateUpload = 0x40;
+constexpr std::uint8_t kScsInitiateDownload = 0x60;
+constexpr std::uint8_t kToggle = 0x10;
+
+std::uint32_t le32(const std::uint8_t* p) noexcept {
+  return static_cast<std::uint32_t>(p[0]) | (static_cast<std::uint32_t>(p[1]) << 8) |
+         (static_cast<std::uint32_t>(p[2]) << 16) | (static_cast<std::uint32_t>(p[3]) << 24);
+}
+
+can::Frame request(NodeId node, std::uint8_t command) {
+  can::Frame f;
+  f.id = sdo_rx_cob_id(node);
+  f.len = 8;
+  f.data[0] = command;
+  return f;
+}
+
+void put_mux(can::Frame& f, std::uint16_t index, std::uint8_t sub) noexcept {
+  f.data[1] = static_cast<std::uint8_t>(index & 0xFF);
+  f.data[2] = static_cast<std::uint8_t>(index >> 8);
+  f.data[3] = sub;
+}
+
+bool mux_matches(const can::Frame& f, std::uint16_t index, std::uint8_t sub) noexcept {
+  return f.len >= 4 && f.data[1] == (index & 0xFF) && f.data[2] == (index >> 8) && f.data[3] == sub;
+}
+
+}  // namespace
+
+SdoClient::SdoClient(can::CanBus& bus, NodeId node, std::chrono::milliseconds timeout)
+    : bus_(bus), node_(node), timeout_(timeout), timer_(bus.context()) {
+  if (!valid_node(node)) {
+    throw std::invalid_argument("SDO client node id " + std::to_string(node) + ": expected 1..127");
+  }
+  subscription_ = bus_.on_frame([this](const can::Frame& f) {
+    if (!f.extended && !f.rtr && f.id == sdo_tx_cob_id(node_)) on_frame(f);
+  });
+}
+
+SdoClient::~SdoClient() {
+  subscription_.reset();
+  timer_.cancel();
+}
+
+void SdoClient::async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler) {
+  Request r;
+  r.upload = true;
+  r.index = index;
+  r.sub = sub;
+  r.on_upload = std::move(handler);
+  queue_.push_back(std::move(r));
+  if (!active_) start_next();
+}
+
+void SdoClient::async_download(std::uint16_t index, std::uint8_t sub,
+                               std::vector<std::uint8_t> data, DownloadHandler handler) {
+  Request r;
+  r.upload = false;
+  r.index = index;
+  r.sub = sub;
+  r.data = std::move(data);
+  r.on_download = std::move(handler);
+  queue_.push_back(std::move(r));
+  if (!active_) start_next();
+}
+
+void SdoClient::start_next() noexcept {
+  if (active_ || queue_.empty()) return;
+  current_ = std::move(queue_.front());
+  queue_.pop_front();
+  active_ = true;
+  phase_ = Phase::initiate;
+  toggle_ = false;
+  offset_ = 0;
+  expected_size_ = 0;
+  size_indicated_ = false;
+  received_.clear();
+  send_current();
+}
+
+void SdoClient::send_current() noexcept {
+  if (current_.upload) {
+    auto f = request(node_, kCcsInitiateUpload);
+    put_mux(f, current_.index, current_.sub);
+    send_frame(f);
+    return;
+  }
+  const std::size_t n = current_.data.size();
+  if (n >= 1 && n <= 4) {
+    // Expedited, size indicated: 0x2F/0x2B/0x27/0x23 for 1/2/3/4 bytes.
+    auto f =
+        request(node_, static_cast<std::uint8_t>(kCcsInitiateDownload | ((4 - n) << 2) | 0x03));
+    put_mux(f, current_.index, current_.sub);
+    std::copy_n(current_.data.begin(), n, f.data.begin() + 4);
+    send_frame(f);
+    return;
+  }
+  auto f = request(node_, kCcsInitiateDownload | 0x01);  // segmented, size indicated
+  put_mux(f, current_.index, current_.sub);
+  const auto size = static_cast<std::uint32_t>(n);
+  for (int i = 0; i < 4; ++i) f.data[4 + i] = static_cast<std::uint8_t>(size >> (8 * i));
+  send_frame(f);
+}
+
+void SdoClient::send_frame(const can::Frame& frame) noexcept {
+  last_sent_ = frame;
+  std::error_code ec;
+  bus_.send(frame, ec);
+  if (ec) {
+    finish(ec);
+    return;
+  }
+  arm_timer();
+}
+
+void SdoClient::arm_timer() noexcept {
+  const auto generation = ++generation_;
+  timer_.expires_after(timeout_);
+  timer_.async_wait([this, generation](const boost::system::error_code& ec) {
+    if (ec == boost::asio::error::operation_aborted) return;
+    if (generation != generation_ || !active_) return;
+    on_timeout();
+  });
+}
+
+void SdoClient::on_timeout() noexcept {
+  if (abort_on_timeout_) send_abort(static_cast<std::uint32_t>(SdoAbort::timeout));
+  finish(make_error_code(SdoAbort::timeout));
+}
+
+void SdoClient::send_abort(std::uint32_t code) noexcept {
+  auto f = request(node_, kAbort);
+  put_mux(f, current_.index, current_.sub);
+  for (int i = 0; i < 4; ++i) f.data[4 + i] = static_cast<std::uint8_t>(code >> (8 * i));
+  std::error_code ignored;
+  bus_.send(f, ignored);
+}
+
+void SdoClient::fail_with_abort(SdoAbort code) noexcept {
+  send_abort(static_cast<std::uint32_t>(code));
+  finish(make_error_code(code));
+}
+
+void SdoClient::finish(std::error_code ec) noexcept {
+  ++generation_;
+  timer_.cancel();
+  Request done = std::move(current_);
+  current_ = Request{};
+  active_ = false;
+  std::vector<std::uint8_t> data = std::move(received_);
+  received_.clear();
+  if (ec) data.clear();
+  if (done.upload) {
+    if (done.on_upload) done.on_upload(ec, std::move(data));
+  } else {
+    if (done.on_download) done.on_download(ec);
+  }
+  start_next();
+}
+
+void SdoClient::on_frame(const can::Frame& frame) noexcept {
+  if (!active_ || frame.len < 1) return;
+  if (frame.data[0] == kAbort) {
+    // An abort for another object is a stale reply: ignore it.
+    if (frame.len >= 4 && !mux_matches(frame, current_.index, current_.sub)) return;
+    const std::uint32_t code =
+        frame.len >= 8 ? le32(&frame.data[4]) : static_cast<std::uint32_t>(SdoAbort::general);
+    finish(std::error_code(static_cast<int>(code), sdo_category()));
+    return;
+  }
+  if (current_.upload) {
+    handle_upload(frame);
+  } else {
+    handle_download(frame);
+  }
+}
+
+void SdoClient::handle_upload(const can::Frame& frame) noexcept {
+  const std::uint8_t cmd = frame.data[0];
+  if (phase_ == Phase::initiate) {
+    if ((cmd & 0xE0) != kScsInitiateUpload) return fail_with_abort(SdoAbort::invalid_command);
+    if (!mux_matches(frame, current_.index, current_.sub)) return;  // not ours
+    const bool expedited = (cmd & 0x02) != 0;
+    const bool sized = (cmd & 0x01) != 0;
+    if (expedited) {
+      const std::size_t available = frame.len > 4 ? frame.len - 4U : 0U;
+      std::size_t size = sized ? 4U - ((cmd >> 2) & 0x03U) : std::min<std::size_t>(4, available);
+      if (size > available) return fail_with_abort(SdoAbort::length_mismatch);
+      received_.assign(frame.data.begin() + 4, frame.data.begin() + 4 + static_cast<long>(size));
+      return finish({});
+    }
+    if (sized) {
+      if (frame.len < 8) return fail_with_abort(SdoAbort::length_mismatch);
+      size_indicated_ = true;
+      expected_size_ = le32(&frame.data[4]);
+    }
+    phase_ = Phase::segment;
+    toggle_ = false;
+    auto f = request(node_, kCcsUploadSegment);
+    send_frame(f);
+    return;
+  }
+  if ((cmd & 0xE0) != kScsUploadSegment) return fail_with_abort(SdoAbort::invalid_command);
+  if (((cmd & kToggle) != 0) != toggle_) return fail_with_abort(SdoAbort::toggle_bit);
+  const std::size_t count = 7U - ((cmd >> 1) & 0x07U);
+  const std::size_t available = frame.len - 1U;
+  if (count > available) return fail_with_abort(SdoAbort::length_mismatch);
+  received_.insert(received_.end(), frame.data.begin() + 1,
+                   frame.data.begin() + 1 + static_cast<long>(count));
+  if (size_indicated_ && received_.size() > expected_size_) {
+    return fail_with_abort(SdoAbort::length_too_high);
+  }
+  if ((cmd & 0x01) != 0) {
+    if (size_indicated_ && received_.size() != expected_size_) {
+      return fail_with_abort(SdoAbort::length_too_low);
+    }
+    return finish({});
+  }
+  toggle_ = !toggle_;
+  auto f = request(node_, static_cast<std::uint8_t>(kCcsUploadSegment | (toggle_ ? kToggle : 0)));
+  send_frame(f);
+}
+
+void SdoClient::handle_download(const can::Frame& frame) noexcept {
+  const std::uint8_t cmd = frame.data[0];
+  if (phase_ == Phase::initiate) {
+    if ((cmd & 0xE0) != kScsInitiateDownload) return fail_with_abort(SdoAbort::invalid_command);
+    if (!mux_matches(frame, current_.index, current_.sub)) return;
+    const std::size_t n = current_.data.size();
+    if (n >= 1 && n <= 4) return finish({});
+    phase_ = Phase::segment;
+    toggle_ = false;
+    send_download_segment();
+    return;
+  }
+  if ((cmd & 0xE0) != kScsDownloadSegment) return fail_with_abort(SdoAbort::invalid_command);
+  if (((cmd & kToggle) != 0) != toggle_) return fail_with_abort(SdoAbort::toggle_bit);
+  if (offset_ >= current_.data.size()) return finish({});
+  toggle_ = !toggle_;
+  send_download_segment();
+}
+
+void SdoClient::send_download_segment() noexcept {
+  const std::size_t remaining = current_.data.size() - offset_;
+  const std::size_t n = std::min<std::size_t>(7, remaining);
+  const bool last = remaining <= 7;
+  auto f = request(node_, static_cast<std::uint8_t>(kCcsDownloadSegment | (toggle_ ? kToggle : 0) |
+                                                    ((7 - n) << 1) | (last ? 1 : 0)));
+  std::copy_n(current_.data.begin() + static_cast<long>(offset_), n, f.data.begin() + 1);
+  offset_ += n;
+  send_frame(f);
+}
+
+template <typename Result, typename Call>
+Result SdoClient::wait_for(Call&& start, std::error_code& ec) noexcept {
+  bool done = false;
+  Result result{};
+  try {
+    start(done, result, ec);
+    auto& io = bus_.context();
+    int idle = 0;
+    while (!done) {
+      if (io.stopped()) io.restart();
+      if (io.run_one() == 0 && ++idle > 2) {
+        ec = make_error_code(SdoAbort::general);
+        return Result{};
+      }
+    }
+  } catch (...) {
+    ec = make_error_code(SdoAbort::general);
+  }
+  return result;
+}
+
+std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t sub,
+                                            std::error_code& ec) noexcept {
+  ec.clear();
+  return wait_for<std::vector<std::uint8_t>>(
+      [&](bool& done, std::vector<std::uint8_t>& result, std::error_code& out) {
+        async_upload(index, sub, [&](std::error_code e, std::vector<std::uint8_t> data) {
+          out = e;
+          result = std::move(data);
+          done = true;
+        });
+      },
+      ec);
+}
+
+std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t sub) {
+  std::error_code ec;
+  auto data = upload(index, sub, ec);
+  if (ec) throw SdoError(ec, node_, index, sub);
+  return data;
+}
+
+void SdoClient::download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data,
+                         std::error_code& ec) noexcept {
+  ec.clear();
+  wait_for<int>(
+      [&](bool& done, int&, std::error_code& out) {
+        async_download(index, sub, std::vector<std::uint8_t>(data.begin(), data.end()),
+                       [&](std::error_code e) {
+                         out = e;
+                         done = true;
+                       });
+      },
+      ec);
+}
+
+void SdoClient::download(std::uint16_t index, std::uint8_t sub,
+                         std::span<const std::uint8_t> data) {
+  std::error_code ec;
+  download(index, sub, data, ec);
+  if (ec) throw SdoError(ec, node_, index, sub);
+}
+
+}  // namespace wavebench::canopen
