@@ -1,0 +1,155 @@
+// friction, input and load: what drives the gear and what it drives (model.md §2, §6, §7).
+#include <string>
+
+#include "twin_sections.hpp"
+#include "wavebench/config/config_error.hpp"
+
+namespace wavebench::config {
+namespace {
+
+model::KinematicInput parse_kinematic(YamlSection& s) {
+  model::KinematicInput k;
+  k.speed = s.quantity_or("speed", Dimension::kAngularSpeed, 0.0);
+  k.ramp_time = s.non_negative_quantity_or("ramp_time", Dimension::kTime, 0.0);
+  if (auto trace = s.optional_section("trace")) {
+    k.trace_t = trace->quantity_list("t", Dimension::kTime);
+    k.trace_theta = trace->quantity_list("theta", Dimension::kAngle);
+    if (k.trace_t.size() < 2) trace->fail("t", trace->value_text("t"), "at least two times");
+    if (k.trace_theta.size() != k.trace_t.size()) {
+      trace->fail("theta", trace->value_text("theta"),
+                  std::to_string(k.trace_t.size()) + " angles, one per time");
+    }
+    for (std::size_t i = 1; i < k.trace_t.size(); ++i) {
+      if (!(k.trace_t[i] > k.trace_t[i - 1])) {
+        trace->fail("t", trace->value_text("t"), "strictly ascending times");
+      }
+    }
+    trace->finish();
+  } else if (!s.has("speed")) {
+    s.fail("speed", "", "an input speed such as \"2680 rpm\", or a trace {t, theta}");
+  }
+  return k;
+}
+
+model::DcMotorInput parse_dc_motor(YamlSection& s) {
+  model::DcMotorInput m;
+  m.resistance = s.positive_quantity("resistance", Dimension::kResistance);
+  m.inductance = s.non_negative_quantity_or("inductance", Dimension::kInductance, 0.0);
+  m.torque_constant = s.positive_quantity("torque_constant", Dimension::kTorqueConstant);
+  m.back_emf_constant =
+      s.non_negative_quantity_or("back_emf_constant", Dimension::kBackEmfConstant, -1.0);
+  if (m.back_emf_constant < 0) s.fail("back_emf_constant", "", "a back-EMF constant (required)");
+  m.no_load_torque = s.non_negative_quantity_or("no_load_torque", Dimension::kTorque, 0.0);
+  if (!s.has("voltage")) s.fail("voltage", "", "the supply voltage (required)");
+  m.voltage = s.sinusoid_or("voltage", Dimension::kVoltage);
+  return m;
+}
+
+model::ServoDriveInput parse_servo(YamlSection& s) {
+  model::ServoDriveInput d;
+  d.position_control = s.boolean_or("position_control", false);
+  d.position_gain = s.non_negative_quantity_or("position_gain", Dimension::kRate, 0.0);
+  d.velocity_gain = s.positive_quantity("velocity_gain", Dimension::kDamping);
+  d.velocity_integral_time =
+      s.non_negative_quantity_or("velocity_integral_time", Dimension::kTime, 0.0);
+  d.torque_limit = s.non_negative_quantity_or("torque_limit", Dimension::kTorque, 0.0);
+  d.speed_limit = s.non_negative_quantity_or("speed_limit", Dimension::kAngularSpeed, 0.0);
+  d.speed_setpoint = s.quantity_or("speed_setpoint", Dimension::kAngularSpeed, 0.0);
+  d.position_setpoint = s.quantity_or("position_setpoint", Dimension::kAngle, 0.0);
+  if (d.position_control && !(d.position_gain > 0)) {
+    s.fail("position_gain", s.value_text("position_gain"),
+           "a gain > 0 when position_control is on");
+  }
+  return d;
+}
+
+}  // namespace
+
+void parse_friction_section(YamlSection& s, model::FrictionLaw& friction) {
+  const std::string law = s.choice("model", {"none", "coulomb_stribeck", "lugre"});
+  if (law == "coulomb_stribeck") {
+    model::CoulombStribeckFriction f;
+    f.coulomb = s.non_negative_quantity_or("coulomb", Dimension::kTorque, 0.0);
+    f.static_torque = s.non_negative_quantity_or("static", Dimension::kTorque, f.coulomb);
+    f.stribeck_speed = s.positive_quantity("stribeck_speed", Dimension::kAngularSpeed);
+    f.viscous = s.non_negative_quantity_or("viscous", Dimension::kDamping, 0.0);
+    f.smoothing_speed =
+        s.non_negative_quantity_or("smoothing_speed", Dimension::kAngularSpeed, 1e-4);
+    friction = f;
+  } else if (law == "lugre") {
+    model::LuGreFriction f;
+    f.sigma0 = s.positive_quantity("sigma0", Dimension::kStiffness);
+    f.sigma1 = s.non_negative_quantity_or("sigma1", Dimension::kDamping, 0.0);
+    f.sigma2 = s.non_negative_quantity_or("sigma2", Dimension::kDamping, 0.0);
+    f.coulomb = s.positive_quantity("coulomb", Dimension::kTorque);
+    f.static_torque = s.non_negative_quantity_or("static", Dimension::kTorque, f.coulomb);
+    f.stribeck_speed = s.positive_quantity("stribeck_speed", Dimension::kAngularSpeed);
+    if (f.static_torque < f.coulomb) {
+      s.fail("static", s.value_text("static"),
+             "a static torque >= the Coulomb torque " + s.value_text("coulomb"));
+    }
+    friction = f;
+  } else {
+    friction = model::NoFriction{};
+  }
+  s.finish();
+}
+
+void parse_input_section(YamlSection& s, model::GearParams& gear) {
+  const std::string type = s.choice("type", {"torque", "dc_motor", "servo", "kinematic"});
+  double nominal = 0.0;
+  if (type == "torque") {
+    model::TorqueInput t;
+    if (!s.has("torque")) s.fail("torque", "", "the input torque (required)");
+    t.torque = s.sinusoid_or("torque", Dimension::kTorque);
+    gear.input = t;
+  } else if (type == "dc_motor") {
+    gear.input = parse_dc_motor(s);
+  } else if (type == "servo") {
+    const auto d = parse_servo(s);
+    nominal = d.position_control ? 0.0 : d.speed_setpoint;
+    gear.input = d;
+  } else {
+    const auto k = parse_kinematic(s);
+    nominal = k.trace_t.empty() ? k.speed : 0.0;
+    gear.input = k;
+  }
+  // The reference motion of the deviation coordinates; an explicit value wins.
+  gear.nominal_input_speed = s.quantity_or("nominal_speed", Dimension::kAngularSpeed, nominal);
+  s.finish();
+}
+
+void parse_load_section(YamlSection& s, model::LoadParams& load) {
+  load.output_torque = s.sinusoid_or("output_torque", Dimension::kTorque);
+  load.drive_ripple = s.sinusoid_or("drive_ripple", Dimension::kTorque);
+  load.output_drag_coulomb = s.non_negative_quantity_or("output_drag", Dimension::kTorque, 0.0);
+  load.drag_smoothing_speed =
+      s.non_negative_quantity_or("drag_smoothing_speed", Dimension::kAngularSpeed, 1e-3);
+  if (auto b = s.optional_section("brake")) {
+    model::PowderBrakeParams p;
+    p.torque_per_amp = b->positive_quantity("torque_per_amp", Dimension::kTorqueConstant);
+    p.threshold_current = b->non_negative_quantity_or("threshold_current", Dimension::kCurrent, 0);
+    p.rated_current = b->positive_quantity("rated_current", Dimension::kCurrent);
+    p.time_constant = b->non_negative_quantity_or("time_constant", Dimension::kTime, 0.05);
+    p.falling_ratio = b->quantity_or("falling_ratio", Dimension::kDimensionless, 1.0);
+    if (!(p.falling_ratio > 0 && p.falling_ratio <= 1.5)) {
+      b->fail("falling_ratio", b->value_text("falling_ratio"), "a ratio in (0, 1.5]");
+    }
+    p.current_setpoint = b->non_negative_quantity_or("current", Dimension::kCurrent, 0.0);
+    p.holding_speed = b->non_negative_quantity_or("holding_speed", Dimension::kAngularSpeed, 1e-3);
+    p.thermal_capacity =
+        b->non_negative_quantity_or("thermal_capacity", Dimension::kHeatCapacity, 0);
+    p.thermal_resistance =
+        b->non_negative_quantity_or("thermal_resistance", Dimension::kThermalResistance, 0);
+    p.ambient_temperature = b->quantity_or("ambient_temperature", Dimension::kTemperature, 25.0);
+    if (p.rated_current <= p.threshold_current) {
+      b->fail("rated_current", b->value_text("rated_current"),
+              "a current above threshold_current " + b->value_text("threshold_current"));
+    }
+    b->finish();
+    load.brake = p;
+  }
+  s.finish();
+}
+
+}  // namespace wavebench::config

@@ -1,0 +1,100 @@
+// solver and analysis: how to integrate a case and what to compute from the response.
+#include <string>
+
+#include "twin_sections.hpp"
+#include "wavebench/config/config_error.hpp"
+
+namespace wavebench::config {
+
+void parse_solver_section(YamlSection& s, model::SimulationOptions& solver) {
+  const std::string method = s.choice_or("method", {"dopri5", "rk4", "rosenbrock"}, "dopri5");
+  solver.method = method == "rk4"          ? model::SolverMethod::kRk4
+                  : method == "rosenbrock" ? model::SolverMethod::kRosenbrock4
+                                           : model::SolverMethod::kDormandPrince45;
+  if (s.has("rtol")) solver.rtol = s.positive_quantity("rtol", Dimension::kDimensionless);
+  if (s.has("atol")) solver.atol = s.positive_quantity("atol", Dimension::kDimensionless);
+  if (s.has("t_end")) solver.t_end = s.positive_quantity("t_end", Dimension::kTime);
+  solver.transient = s.non_negative_quantity_or("transient", Dimension::kTime, solver.transient);
+  if (!(solver.transient < solver.t_end)) {
+    s.fail("transient", s.value_text("transient"),
+           "a transient shorter than t_end (" + std::to_string(solver.t_end) + " s)");
+  }
+  if (s.has("sample_rate")) {
+    solver.sample_rate = s.positive_quantity("sample_rate", Dimension::kFrequency);
+  }
+  if (s.has("fixed_step")) {
+    solver.fixed_step = s.positive_quantity("fixed_step", Dimension::kTime);
+  }
+  solver.max_step = s.non_negative_quantity_or("max_step", Dimension::kTime, solver.max_step);
+  solver.locate_events = s.boolean_or("locate_events", solver.locate_events);
+  s.finish();
+}
+
+namespace {
+
+void parse_spectrum(YamlSection& s, analysis::SpectrumOptions& o) {
+  o.signal = s.choice_or("signal",
+                         {"alpha2", "omega2", "theta2_dev", "te", "twist", "twist_rate",
+                          "gear_torque", "omega1", "load_torque", "motor_torque"},
+                         o.signal);
+  const std::string window = s.choice_or("window", {"hann", "flattop", "rectangular"}, "hann");
+  o.window = window == "flattop"       ? analysis::Window::kFlatTop
+             : window == "rectangular" ? analysis::Window::kRectangular
+                                       : analysis::Window::kHann;
+  o.max_frequency_hz =
+      s.non_negative_quantity_or("max_frequency", Dimension::kFrequency, o.max_frequency_hz);
+  o.max_peaks = s.integer_or("max_peaks", o.max_peaks);
+  if (o.max_peaks < 1) s.fail("max_peaks", s.value_text("max_peaks"), "an integer >= 1");
+  o.min_relative_amplitude = s.non_negative_quantity_or(
+      "min_relative_amplitude", Dimension::kDimensionless, o.min_relative_amplitude);
+  s.finish();
+}
+
+void parse_sweep(YamlSection& s, analysis::SweepOptions& o) {
+  o.enabled = s.boolean_or("enabled", true);
+  o.from_speed = s.positive_quantity("from", Dimension::kAngularSpeed);
+  o.to_speed = s.positive_quantity("to", Dimension::kAngularSpeed);
+  o.steps = s.integer("steps");
+  if (o.steps < 2) s.fail("steps", s.value_text("steps"), "an integer >= 2");
+  o.settle_time = s.positive_quantity("settle_time", Dimension::kTime);
+  o.record_time = s.positive_quantity("record_time", Dimension::kTime);
+  o.jump_threshold =
+      s.non_negative_quantity_or("jump_threshold", Dimension::kDimensionless, o.jump_threshold);
+  s.finish();
+}
+
+}  // namespace
+
+void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis) {
+  if (auto sp = s.optional_section("spectrum")) parse_spectrum(*sp, analysis.spectrum);
+  analysis.order_spectrum = s.boolean_or("order_spectrum", analysis.order_spectrum);
+  if (auto p = s.optional_section("poincare")) {
+    analysis.poincare.excitation_source = p->text_or("excitation_source", "");
+    analysis.poincare.max_clusters = p->integer_or("max_clusters", analysis.poincare.max_clusters);
+    if (analysis.poincare.max_clusters < 1) {
+      p->fail("max_clusters", p->value_text("max_clusters"), "an integer >= 1");
+    }
+    p->finish();
+  }
+  if (auto sw = s.optional_section("sweep")) parse_sweep(*sw, analysis.sweep);
+  if (auto se = s.optional_section("sensitivity")) {
+    auto& o = analysis.sensitivity;
+    o.enabled = se->boolean_or("enabled", true);
+    o.relative_step = se->quantity_or("relative_step", Dimension::kDimensionless, o.relative_step);
+    if (!(o.relative_step > 0)) {
+      se->fail("relative_step", se->value_text("relative_step"), "a fraction > 0");
+    }
+    o.monte_carlo_runs = se->integer_or("monte_carlo_runs", o.monte_carlo_runs);
+    if (o.monte_carlo_runs < 0) {
+      se->fail("monte_carlo_runs", se->value_text("monte_carlo_runs"), "an integer >= 0");
+    }
+    const int seed = se->integer_or("seed", static_cast<int>(o.seed));
+    if (seed < 0) se->fail("seed", se->value_text("seed"), "an integer >= 0");
+    o.seed = static_cast<unsigned>(seed);
+    se->finish();
+  }
+  analysis.linearise = s.boolean_or("linearise", analysis.linearise);
+  s.finish();
+}
+
+}  // namespace wavebench::config

@@ -1,0 +1,62 @@
+#include "wavebench/config/twin_case.hpp"
+
+#include <fstream>
+#include <sstream>
+
+#include "twin_sections.hpp"
+#include "wavebench/config/config_error.hpp"
+
+namespace wavebench::config {
+namespace {
+
+TwinCase parse_document(const YAML::Node& root) {
+  YamlSection doc = document_section(root);
+  TwinCase twin;
+  twin.gear.name = doc.text_or("name", "");
+  doc.text_or("description", "");  // free text for people
+
+  YamlSection gear = doc.section("gear");
+  parse_gear_section(gear, twin.gear);
+  if (auto s = doc.optional_section("te")) parse_te_section(*s, twin.gear);
+  YamlSection stiffness = doc.section("stiffness");
+  parse_stiffness_section(stiffness, twin.gear.stiffness);
+  if (auto s = doc.optional_section("backlash")) parse_backlash_section(*s, twin.gear.backlash);
+  if (auto s = doc.optional_section("damping")) parse_damping_section(*s, twin.gear.damping);
+  if (auto s = doc.optional_section("friction")) parse_friction_section(*s, twin.gear.friction);
+  YamlSection input = doc.section("input");
+  parse_input_section(input, twin.gear);
+  if (auto s = doc.optional_section("load")) parse_load_section(*s, twin.gear.load);
+  if (auto s = doc.optional_section("solver")) parse_solver_section(*s, twin.solver);
+  if (auto s = doc.optional_section("analysis")) parse_analysis_section(*s, twin.analysis);
+  doc.finish();
+  return twin;
+}
+
+}  // namespace
+
+TwinCase parse_twin_case(const std::string& yaml_text, const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("", "line " + std::to_string(e.mark.line + 1) + ": " + e.msg,
+                      "well-formed YAML", source);
+  }
+  try {
+    return parse_document(root);
+  } catch (const ConfigError& e) {
+    throw e.with_source(source);
+  } catch (const YAML::Exception& e) {
+    throw ConfigError("", e.msg, "well-formed twin case", source);
+  }
+}
+
+TwinCase load_twin_case(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("", path.string(), "a readable twin-case file", path.string());
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_twin_case(text.str(), path.string());
+}
+
+}  // namespace wavebench::config

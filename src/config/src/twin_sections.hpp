@@ -1,0 +1,21 @@
+#pragma once
+// The parsers of the sections of a twin case, one per file, each filling its part of TwinCase.
+
+#include "wavebench/config/twin_case.hpp"
+#include "yaml_section.hpp"
+
+namespace wavebench::config {
+
+void parse_gear_section(YamlSection& s, model::GearParams& gear);
+void parse_te_section(YamlSection& s, model::GearParams& gear);
+void parse_stiffness_section(YamlSection& s, model::StiffnessParams& stiffness);
+void parse_backlash_section(YamlSection& s, model::BacklashParams& backlash);
+void parse_damping_section(YamlSection& s, model::MeshDamping& damping);
+void parse_friction_section(YamlSection& s, model::FrictionLaw& friction);
+// Also sets gear.nominal_input_speed.
+void parse_input_section(YamlSection& s, model::GearParams& gear);
+void parse_load_section(YamlSection& s, model::LoadParams& load);
+void parse_solver_section(YamlSection& s, model::SimulationOptions& solver);
+void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis);
+
+}  // namespace wavebench::config
