@@ -38,6 +38,9 @@ struct AttributionInput {
   Window window = Window::kHann;
   LinearGearCoefficients linear;  // transfer function TE -> signal
   std::string signal;             // channel analysed
+  // false: no transfer function for the signal (or no linear model); shares then follow the
+  // bare TE amplitudes.
+  bool use_transfer = true;
 };
 
 // Frequency a term appears at after sampling at fs (folded into 0 .. fs/2).

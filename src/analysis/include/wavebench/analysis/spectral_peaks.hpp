@@ -4,6 +4,7 @@
 #include <vector>
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/analysis/window.hpp"
 
 namespace wavebench::analysis {
 
@@ -25,8 +26,5 @@ struct PeakSearch {
 // logarithm of the three bins around the maximum (exact for a Gaussian lobe, within 1 % for
 // Hann) and corrects the amplitude with the window's own lobe shape at the fitted offset.
 std::vector<SpectralPeak> find_peaks(const AmplitudeSpectrum& spectrum, const PeakSearch& search);
-
-// The window's normalised amplitude response at `offset` bins from a line (1 at 0).
-double window_lobe(Window window, double offset_bins);
 
 }  // namespace wavebench::analysis

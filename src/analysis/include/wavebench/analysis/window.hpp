@@ -17,4 +17,8 @@ double coherent_gain(Window window);
 
 const char* window_name(Window window);
 
+// The window's normalised amplitude response at `offset_bins` from a line (1 at 0), in the
+// long-record limit: what a line off the bin grid reads, relative to its true amplitude.
+double window_lobe(Window window, double offset_bins);
+
 }  // namespace wavebench::analysis

@@ -1,0 +1,92 @@
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+
+#include <fftw3.h>
+
+#include <cmath>
+#include <numeric>
+#include <stdexcept>
+#include <string>
+
+#include "wavebench/analysis/window.hpp"
+
+namespace wavebench::analysis {
+
+struct SpectrumAnalyser::Plan {
+  explicit Plan(std::size_t n)
+      : size(n),
+        in(static_cast<double*>(fftw_malloc(sizeof(double) * n))),
+        out(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (n / 2 + 1)))),
+        plan(fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE)) {
+    if (plan == nullptr)
+      throw std::runtime_error("FFTW could not plan a transform of " + std::to_string(n) +
+                               " points");
+  }
+  ~Plan() {
+    fftw_destroy_plan(plan);
+    fftw_free(in);
+    fftw_free(out);
+  }
+  Plan(const Plan&) = delete;
+  Plan& operator=(const Plan&) = delete;
+
+  std::size_t size;
+  double* in;
+  fftw_complex* out;
+  fftw_plan plan;
+};
+
+SpectrumAnalyser::SpectrumAnalyser() = default;
+SpectrumAnalyser::~SpectrumAnalyser() = default;
+
+AmplitudeSpectrum SpectrumAnalyser::analyse(std::span<const double> signal, double sample_rate_hz,
+                                            Window window) {
+  const std::size_t n = signal.size();
+  if (n < 4) {
+    throw std::invalid_argument("spectrum: the signal has " + std::to_string(n) +
+                                " samples, expected at least 4");
+  }
+  if (!(sample_rate_hz > 0)) {
+    throw std::invalid_argument("spectrum: sample_rate " + std::to_string(sample_rate_hz) +
+                                " Hz, expected > 0");
+  }
+  auto& slot = plans_[n];
+  if (!slot) {
+    slot = std::make_unique<Plan>(n);
+    ++plans_created_;
+  }
+  Plan& plan = *slot;
+
+  const auto w = window_coefficients(window, n);
+  const double mean = std::accumulate(signal.begin(), signal.end(), 0.0) / static_cast<double>(n);
+  double window_sum = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    plan.in[i] = (signal[i] - mean) * w[i];
+    window_sum += w[i];
+  }
+  fftw_execute(plan.plan);
+
+  AmplitudeSpectrum spectrum;
+  spectrum.sample_rate_hz = sample_rate_hz;
+  spectrum.samples = n;
+  spectrum.resolution_hz = sample_rate_hz / static_cast<double>(n);
+  spectrum.window = window;
+  const std::size_t bins = n / 2 + 1;
+  spectrum.frequency_hz.resize(bins);
+  spectrum.amplitude.resize(bins);
+  for (std::size_t k = 0; k < bins; ++k) {
+    const double magnitude = std::hypot(plan.out[k][0], plan.out[k][1]);
+    // One-sided: a line's power is split between +f and -f except at DC and Nyquist.
+    const bool edge = k == 0 || (n % 2 == 0 && k == n / 2);
+    spectrum.frequency_hz[k] = static_cast<double>(k) * spectrum.resolution_hz;
+    spectrum.amplitude[k] = (edge ? 1.0 : 2.0) * magnitude / window_sum;
+  }
+  return spectrum;
+}
+
+AmplitudeSpectrum amplitude_spectrum(std::span<const double> signal, double sample_rate_hz,
+                                     Window window) {
+  SpectrumAnalyser analyser;
+  return analyser.analyse(signal, sample_rate_hz, window);
+}
+
+}  // namespace wavebench::analysis
