@@ -12,9 +12,11 @@ namespace {
 
 // Hairer & Wanner's six-stage L-stable Rosenbrock 4(3) (the set of Numerical Recipes 3rd ed.,
 // StepperRoss, and of Boost.Odeint's rosenbrock4), in the form that solves with
-// (I/(γh) − J) and carries stage increments g_i.
+// (I/(γh) − J) and carries stage increments g_i. d4 is negative as in Hairer's RODAS (METH=1);
+// Boost 1.74's odeint rosenbrock4 has it positive, which drops the method to first order on
+// any problem with an explicit time dependence (y' = cos 3t shows it).
 constexpr double gamma = 0.25;
-constexpr double d1 = 0.25, d2 = -0.1043, d3 = 0.1035, d4 = 0.3620000000000023e-01;
+constexpr double d1 = 0.25, d2 = -0.1043, d3 = 0.1035, d4 = -0.3620000000000023e-01;
 constexpr double c2 = 0.386, c3 = 0.21, c4 = 0.63;
 constexpr double c21 = -0.5668800000000000e+01, a21 = 0.1544000000000000e+01;
 constexpr double c31 = -0.2430093356833875e+01, c32 = -0.2063599157091915e+00;
@@ -107,8 +109,8 @@ void Rosenbrock4::evaluate_jacobian() {
     y_stage_ = y_;
     for (std::size_t j = 0; j < n_; ++j) {
       const auto jj = static_cast<Eigen::Index>(j);
-      const double delta =
-          sqrt_eps * std::fmax(std::fabs(y_[jj]), std::fmax(error_scale_[jj], 1e-5));
+      // Perturb by a relative sqrt(eps) of the state's own size or its characteristic size.
+      const double delta = sqrt_eps * std::fmax(std::fabs(y_[jj]), error_scale_[jj]);
       y_stage_[jj] = y_[jj] + delta;
       const double dy = y_stage_[jj] - y_[jj];  // exactly representable increment
       evaluate(t_, y_stage_.data(), f_stage_.data());
@@ -116,12 +118,18 @@ void Rosenbrock4::evaluate_jacobian() {
       y_stage_[jj] = y_[jj];
     }
   }
-  // df/dt by a forward difference; systems with forcing terms are non-autonomous.
-  const double sqrt_eps = std::sqrt(std::numeric_limits<double>::epsilon());
-  const double dt = sqrt_eps * std::fmax(std::fabs(t_), std::fmax(h_, 1e-6));
-  const double t_probe = t_ + dt;
-  evaluate(t_probe, y_.data(), f_stage_.data());
-  dfdt_ = (f_stage_ - f0_) / (t_probe - t_);
+  // df/dt by a central difference over a fraction of the step: forcing terms (24 kHz mesh
+  // excitation) vary on the step's time scale, not on the scale of |t|, and a forward
+  // difference's O(dt) error costs a Rosenbrock method its order.
+  const double cbrt_eps = std::cbrt(std::numeric_limits<double>::epsilon());
+  const double h_scale = h_ > 0 ? h_ : 1e-6;
+  const double dt =
+      std::fmax(cbrt_eps * h_scale, 64 * std::numeric_limits<double>::epsilon() * std::fabs(t_));
+  const double t_plus = t_ + dt, t_minus = t_ - dt;
+  evaluate(t_plus, y_.data(), f_stage_.data());
+  dfdt_ = f_stage_;
+  evaluate(t_minus, y_.data(), f_stage_.data());
+  dfdt_ = (dfdt_ - f_stage_) / (t_plus - t_minus);
   jacobian_current_ = true;
 }
 

@@ -119,9 +119,13 @@ TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span
   const IntegratorCounters start = integrator_.counters();
 
   if (o.sample_rate > 0) {
-    auto k = static_cast<std::int64_t>(std::ceil((t0 - o.sample_t0) * o.sample_rate));
-    while (o.sample_t0 + static_cast<double>(k - 1) / o.sample_rate >= t0) --k;
-    while (o.sample_t0 + static_cast<double>(k) / o.sample_rate < t0) ++k;
+    // The first sample is at sample_t0, or the first grid point after t0 if that is later.
+    std::int64_t k = 0;
+    if (t0 > o.sample_t0) {
+      k = static_cast<std::int64_t>(std::ceil((t0 - o.sample_t0) * o.sample_rate));
+      while (k > 0 && o.sample_t0 + static_cast<double>(k - 1) / o.sample_rate >= t0) --k;
+      while (o.sample_t0 + static_cast<double>(k) / o.sample_rate < t0) ++k;
+    }
     next_sample_ = k;
     emit_samples_up_to(t0, d, result);
   }
