@@ -9,7 +9,7 @@ packages=(
   libmodbus-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang libclang-rt-14-dev
-  can-utils mbpoll python3-can python3-pymodbus python3-scipy python3-numpy
+  can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   packages+=(qemu-system-x86 busybox-static cpio kmod)
