@@ -243,6 +243,7 @@ void SimulatedBenchPlant::substep(double h) {
   s.gear_torque = tg;
   s.motor_torque = motor_torque_;
   s.brake_torque = brake;
+  s.shaft_torque = t_load - brake;
 }
 
 model::GearParams default_bench_gear() {

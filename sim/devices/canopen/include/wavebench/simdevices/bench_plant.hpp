@@ -24,6 +24,7 @@ struct PlantState {
   double gear_torque = 0;   // T_g at the output [N*m]
   double motor_torque = 0;  // T_m [N*m]
   double brake_torque = 0;  // torque the brake exerts on the output [N*m] (opposes motion)
+  double shaft_torque = 0;  // torque through the sensor into brake and load [N*m]
 };
 
 class SimulatedBenchPlant {

@@ -1,0 +1,468 @@
+#include "wavebench/simdevices/servo_drive.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+
+#include "wavebench/simdevices/sdo_abort.hpp"
+
+namespace wavebench::simdevices {
+namespace {
+
+constexpr std::uint16_t kNewSetPoint = 0x0010;
+constexpr std::uint16_t kChangeImmediately = 0x0020;
+constexpr std::uint16_t kRelative = 0x0040;
+constexpr std::uint16_t kHalt = 0x0100;
+
+std::int32_t wrap_to_int32(double value) {
+  const auto v = static_cast<std::int64_t>(std::llround(value));
+  return static_cast<std::int32_t>(static_cast<std::uint32_t>(static_cast<std::uint64_t>(v)));
+}
+
+// Error register bits (0x1001) for a CiA 402 error code's class.
+std::uint8_t error_register_for(std::uint16_t code) {
+  std::uint8_t reg = 0x01;  // generic
+  switch (code >> 12) {
+    case 0x2:
+      reg |= 0x02;  // current
+      break;
+    case 0x3:
+      reg |= 0x04;  // voltage
+      break;
+    case 0x4:
+      reg |= 0x08;  // temperature
+      break;
+    case 0x8:
+      reg |= (code >> 8) == 0x81 ? 0x10 : 0x20;  // communication / device profile
+      break;
+    default:
+      break;
+  }
+  return reg;
+}
+
+bool is_position_mode(Cia402Mode m) {
+  return m == Cia402Mode::kProfilePosition || m == Cia402Mode::kCyclicSyncPosition;
+}
+
+}  // namespace
+
+Cia402ServoDrive::Cia402ServoDrive(const ServoDriveConfig& config, FrameSink sink)
+    : CanopenNode(config.node_id, config.identity, std::move(sink)), config_(config) {
+  add_profile_objects();
+  set_default_tpdo(1, {{0x6041, 0, 16}, {0x6064, 0, 32}}, true, 1);
+  set_default_tpdo(2, {{0x606C, 0, 32}, {0x6077, 0, 16}}, true, 1);
+  set_default_rpdo(1, {{0x6040, 0, 16}}, true, 255);
+  set_default_rpdo(2, {{0x6040, 0, 16}, {0x607A, 0, 32}}, false, 1);
+  set_default_rpdo(3, {{0x6040, 0, 16}, {0x60FF, 0, 32}}, false, 1);
+  on_reset_application();
+}
+
+void Cia402ServoDrive::add_profile_objects() {
+  auto& d = od();
+  const auto& c = config_;
+  using DT = DataType;
+  using A = Access;
+  d.add_value<std::uint16_t>(0x603F, 0, "error code", DT::kUnsigned16, A::kReadOnly, 0, true);
+  d.add_value<std::uint16_t>(0x6040, 0, "controlword", DT::kUnsigned16, A::kReadWrite, 0, true)
+      .after_write = [this] { on_controlword(); };
+  d.add_value<std::uint16_t>(0x6041, 0, "statusword", DT::kUnsigned16, A::kReadOnly, 0, true);
+  auto& qs = d.add_value<std::int16_t>(0x605A, 0, "quick stop option code", DT::kInteger16,
+                                       A::kReadWrite, c.quick_stop_option);
+  qs.min = 0;
+  qs.max = 8;
+  auto& mode = d.add_value<std::int8_t>(0x6060, 0, "modes of operation", DT::kInteger8,
+                                        A::kReadWrite, 0, true);
+  mode.on_write = [](std::span<const std::uint8_t> data) -> std::uint32_t {
+    const auto m = static_cast<std::int8_t>(data[0]);
+    return (m == 0 || m == 1 || m == 3 || m == 8 || m == 9) ? sdo_abort::kNone
+                                                            : sdo_abort::kValueRange;
+  };
+  mode.after_write = [this] { on_mode_change(); };
+  d.add_value<std::int8_t>(0x6061, 0, "modes of operation display", DT::kInteger8, A::kReadOnly, 0,
+                           true);
+  d.add_value<std::int32_t>(0x6062, 0, "position demand value", DT::kInteger32, A::kReadOnly, 0,
+                            true);
+  d.add_value<std::int32_t>(0x6064, 0, "position actual value", DT::kInteger32, A::kReadOnly, 0,
+                            true);
+  d.add_value<std::uint32_t>(0x6065, 0, "following error window", DT::kUnsigned32, A::kReadWrite,
+                             c.following_error_window);
+  d.add_value<std::uint16_t>(0x6066, 0, "following error time out", DT::kUnsigned16, A::kReadWrite,
+                             c.following_error_timeout_ms);
+  d.add_value<std::uint32_t>(0x6067, 0, "position window", DT::kUnsigned32, A::kReadWrite,
+                             c.position_window);
+  d.add_value<std::uint16_t>(0x6068, 0, "position window time", DT::kUnsigned16, A::kReadWrite,
+                             c.position_window_time_ms);
+  d.add_value<std::int32_t>(0x606C, 0, "velocity actual value", DT::kInteger32, A::kReadOnly, 0,
+                            true);
+  d.add_value<std::uint16_t>(0x606D, 0, "velocity window", DT::kUnsigned16, A::kReadWrite,
+                             c.velocity_window);
+  d.add_value<std::uint16_t>(0x606E, 0, "velocity window time", DT::kUnsigned16, A::kReadWrite,
+                             c.velocity_window_time_ms);
+  d.add_value<std::uint16_t>(0x606F, 0, "velocity threshold", DT::kUnsigned16, A::kReadWrite,
+                             c.velocity_threshold);
+  d.add_value<std::uint16_t>(0x6072, 0, "max torque", DT::kUnsigned16, A::kReadWrite,
+                             c.max_torque_permille, true);
+  d.add_value<std::uint32_t>(0x6076, 0, "motor rated torque [mN*m]", DT::kUnsigned32, A::kReadOnly,
+                             static_cast<std::uint32_t>(std::lround(c.rated_torque_nm * 1000)));
+  d.add_value<std::int16_t>(0x6077, 0, "torque actual value", DT::kInteger16, A::kReadOnly, 0,
+                            true);
+  d.add_value<std::int32_t>(0x607A, 0, "target position", DT::kInteger32, A::kReadWrite, 0, true);
+  d.add_value<std::uint8_t>(0x607D, 0, "software position limit", DT::kUnsigned8, A::kConst, 2);
+  d.add_value<std::int32_t>(0x607D, 1, "min position limit", DT::kInteger32, A::kReadWrite, 0);
+  d.add_value<std::int32_t>(0x607D, 2, "max position limit", DT::kInteger32, A::kReadWrite, 0);
+  const auto max_speed_inc = static_cast<std::uint32_t>(
+      std::min<double>(c.max_motor_speed_rpm / 60.0 * c.counts_per_revolution,
+                       std::numeric_limits<std::uint32_t>::max()));
+  d.add_value<std::uint32_t>(0x607F, 0, "max profile velocity", DT::kUnsigned32, A::kReadWrite,
+                             max_speed_inc, true);
+  d.add_value<std::uint32_t>(0x6080, 0, "max motor speed [rpm]", DT::kUnsigned32, A::kReadWrite,
+                             c.max_motor_speed_rpm);
+  d.add_value<std::uint32_t>(0x6081, 0, "profile velocity", DT::kUnsigned32, A::kReadWrite,
+                             c.profile_velocity, true);
+  d.add_value<std::uint32_t>(0x6083, 0, "profile acceleration", DT::kUnsigned32, A::kReadWrite,
+                             c.profile_acceleration, true);
+  d.add_value<std::uint32_t>(0x6084, 0, "profile deceleration", DT::kUnsigned32, A::kReadWrite,
+                             c.profile_deceleration, true);
+  d.add_value<std::uint32_t>(0x6085, 0, "quick stop deceleration", DT::kUnsigned32, A::kReadWrite,
+                             c.quick_stop_deceleration);
+  d.add_value<std::uint8_t>(0x608F, 0, "position encoder resolution", DT::kUnsigned8, A::kConst, 2);
+  d.add_value<std::uint32_t>(0x608F, 1, "encoder increments", DT::kUnsigned32, A::kReadOnly,
+                             c.counts_per_revolution);
+  d.add_value<std::uint32_t>(0x608F, 2, "motor revolutions", DT::kUnsigned32, A::kReadOnly, 1);
+  d.add_value<std::int32_t>(0x60F4, 0, "following error actual value", DT::kInteger32, A::kReadOnly,
+                            0, true);
+  d.add_value<std::int32_t>(0x60FF, 0, "target velocity", DT::kInteger32, A::kReadWrite, 0, true);
+  // Supported drive modes: PP (bit 0), PV (bit 2), CSP (bit 7), CSV (bit 8).
+  d.add_value<std::uint32_t>(0x6502, 0, "supported drive modes", DT::kUnsigned32, A::kReadOnly,
+                             0x00000185U);
+  d.add_value<std::uint16_t>(kFaultInjectionIndex, 0, "simulated fault injection", DT::kUnsigned16,
+                             A::kWriteOnly, 0)
+      .after_write = [this] {
+    const auto code = od().get<std::uint16_t>(kFaultInjectionIndex, 0);
+    od().set<std::uint16_t>(kFaultInjectionIndex, 0, 0);
+    if (code != 0) inject_fault(code);
+  };
+}
+
+double Cia402ServoDrive::counts_per_radian() const noexcept {
+  return config_.counts_per_revolution / (2 * std::numbers::pi);
+}
+
+void Cia402ServoDrive::on_reset_application() {
+  machine_.reset();
+  machine_.power_up();
+  active_mode_ = Cia402Mode::kNone;
+  last_controlword_ = 0;
+  torque_ = 0;
+  integral_ = 0;
+  limit_active_ = false;
+  pp_buffered_ = false;
+  set_point_ack_ = false;
+  profile_done_ = true;
+  target_reached_ = true;
+  following_error_ = false;
+  following_error_time_ = 0;
+  last_sync_ = -1;
+  profile_.reset(actual_position_, 0);
+  pp_target_ = csp_from_ = csp_to_ = actual_position_;
+  od().set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+void Cia402ServoDrive::on_mode_change() {
+  const auto requested = od().get<std::int8_t>(0x6060, 0);
+  active_mode_ = static_cast<Cia402Mode>(requested);
+  od().set<std::int8_t>(0x6061, 0, requested);
+  // A mode switch is bumpless: the new mode starts from where the shaft is.
+  profile_.reset(actual_position_, is_position_mode(active_mode_) ? 0 : actual_velocity_);
+  pp_target_ = csp_from_ = csp_to_ = actual_position_;
+  profile_done_ = true;
+  pp_buffered_ = false;
+  csp_elapsed_ = 0;
+  od().set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+void Cia402ServoDrive::on_controlword() {
+  const auto cw = od().get<std::uint16_t>(0x6040, 0);
+  const Cia402State before = machine_.state();
+  machine_.apply_controlword(cw);
+  const Cia402State after = machine_.state();
+  if (after != before) {
+    if (after == Cia402State::kOperationEnabled && before != Cia402State::kQuickStopActive) {
+      profile_.reset(actual_position_, 0);
+      pp_target_ = csp_from_ = csp_to_ = actual_position_;
+      integral_ = 0;
+      profile_done_ = true;
+      pp_buffered_ = false;
+      target_reached_ = true;
+    }
+    if (after == Cia402State::kQuickStopActive) profile_.reset(actual_position_, actual_velocity_);
+    if (after == Cia402State::kOperationEnabled && before == Cia402State::kQuickStopActive) {
+      profile_.reset(actual_position_, 0);
+      pp_target_ = actual_position_;
+      profile_done_ = true;
+    }
+    if (before == Cia402State::kFault) {
+      od().set<std::uint16_t>(0x603F, 0, 0);
+      following_error_ = false;
+      following_error_time_ = 0;
+      send_emcy(0x0000, 0x00);  // error reset
+    }
+  }
+  if (after == Cia402State::kOperationEnabled && active_mode_ == Cia402Mode::kProfilePosition) {
+    const bool rising = (cw & kNewSetPoint) && !(last_controlword_ & kNewSetPoint);
+    const bool falling = !(cw & kNewSetPoint) && (last_controlword_ & kNewSetPoint);
+    if (rising) start_new_set_point(cw);
+    if (falling && !pp_buffered_) set_point_ack_ = false;
+  } else if (!(cw & kNewSetPoint)) {
+    set_point_ack_ = false;
+  }
+  last_controlword_ = cw;
+  od().set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+void Cia402ServoDrive::start_new_set_point(std::uint16_t cw) {
+  const double raw = od().get<std::int32_t>(0x607A, 0);
+  const double target = clamp_to_software_limits((cw & kRelative) ? pp_target_ + raw : raw);
+  if (profile_done_ || (cw & kChangeImmediately)) {
+    pp_target_ = target;
+    profile_done_ = false;
+    pp_buffered_ = false;
+  } else if (!pp_buffered_) {
+    pp_buffered_target_ = target;
+    pp_buffered_ = true;
+  } else {
+    return;  // buffer full: the set-point is not taken, acknowledge stays as it is
+  }
+  target_reached_ = false;
+  in_window_time_ = 0;
+  set_point_ack_ = true;
+}
+
+double Cia402ServoDrive::clamp_to_software_limits(double position) {
+  const auto lo = od().get<std::int32_t>(0x607D, 1);
+  const auto hi = od().get<std::int32_t>(0x607D, 2);
+  if (lo == 0 && hi == 0) return position;  // limits off
+  const double clamped = std::clamp(position, static_cast<double>(lo), static_cast<double>(hi));
+  if (clamped != position) limit_active_ = true;
+  return clamped;
+}
+
+void Cia402ServoDrive::on_sync(double now) {
+  csp_period_ = last_sync_ >= 0 && now > last_sync_ ? now - last_sync_ : 0;
+  if (csp_period_ <= 0) {
+    const auto us = od().get<std::uint32_t>(0x1006, 0);
+    csp_period_ = us != 0 ? us * 1e-6 : 1e-3;
+  }
+  last_sync_ = now;
+  if (active_mode_ == Cia402Mode::kCyclicSyncPosition) {
+    csp_from_ = profile_.position();
+    csp_to_ = clamp_to_software_limits(od().get<std::int32_t>(0x607A, 0));
+    csp_elapsed_ = 0;
+  }
+}
+
+double Cia402ServoDrive::motion_demand(double dt, double& velocity_ff) {
+  auto& d = od();
+  const double acc = d.get<std::uint32_t>(0x6083, 0);
+  const double dec = d.get<std::uint32_t>(0x6084, 0);
+  const double max_profile = d.get<std::uint32_t>(0x607F, 0);
+  const bool halt = d.get<std::uint16_t>(0x6040, 0) & kHalt;
+
+  if (machine_.state() == Cia402State::kQuickStopActive) {
+    const auto option = d.get<std::int16_t>(0x605A, 0);
+    const double qs_dec = (option == 1 || option == 5) ? dec : d.get<std::uint32_t>(0x6085, 0);
+    profile_.step_to_velocity(0, qs_dec, qs_dec, dt);
+    if (profile_.velocity() == 0) machine_.quick_stop_done(option >= 0 && option <= 4);
+    velocity_ff = profile_.velocity();
+    return profile_.position();
+  }
+  switch (active_mode_) {
+    case Cia402Mode::kProfilePosition:
+      if (halt) {
+        profile_.step_to_velocity(0, acc, dec, dt);
+      } else if (!profile_done_) {
+        const double v = std::min<double>(d.get<std::uint32_t>(0x6081, 0), max_profile);
+        if (profile_.step_to_position(pp_target_, v, acc, dec, dt)) {
+          profile_done_ = true;
+          if (pp_buffered_) {
+            pp_target_ = pp_buffered_target_;
+            pp_buffered_ = false;
+            profile_done_ = false;
+            if (!(d.get<std::uint16_t>(0x6040, 0) & kNewSetPoint)) set_point_ack_ = false;
+          }
+        }
+      }
+      break;
+    case Cia402Mode::kProfileVelocity: {
+      const double target =
+          std::clamp<double>(d.get<std::int32_t>(0x60FF, 0), -max_profile, max_profile);
+      profile_.step_to_velocity(halt ? 0 : target, acc, dec, dt);
+      break;
+    }
+    case Cia402Mode::kCyclicSyncPosition: {
+      csp_elapsed_ += dt;
+      const double frac = std::min(1.0, csp_elapsed_ / csp_period_);
+      const double slope = frac < 1.0 ? (csp_to_ - csp_from_) / csp_period_ : 0.0;
+      profile_.reset(csp_from_ + (csp_to_ - csp_from_) * frac, slope);
+      break;
+    }
+    case Cia402Mode::kCyclicSyncVelocity: {
+      const double v = d.get<std::int32_t>(0x60FF, 0);
+      profile_.reset(profile_.position() + v * dt, v);
+      break;
+    }
+    case Cia402Mode::kNone:
+      profile_.step_to_velocity(0, acc, dec, dt);
+      break;
+  }
+  velocity_ff = profile_.velocity();
+  return profile_.position();
+}
+
+double Cia402ServoDrive::control(const PlantState& plant, double dt) {
+  const double cpr = counts_per_radian();
+  actual_position_ = plant.theta_in * cpr;
+  actual_velocity_ = plant.omega_in * cpr;
+  limit_active_ = false;
+
+  if (machine_.state() == Cia402State::kFaultReactionActive) {
+    // The fault reaction is to switch the power stage off; the motor coasts.
+    machine_.fault_reaction_done();
+  }
+  if (!machine_.power_stage_on()) {
+    torque_ = 0;
+    integral_ = 0;
+    profile_.reset(actual_position_, 0);
+    if (active_mode_ != Cia402Mode::kProfilePosition || profile_done_)
+      pp_target_ = actual_position_;
+    update_outputs(plant);
+    return 0;
+  }
+
+  double v_ff = 0;
+  const double p_demand = motion_demand(dt, v_ff);
+  const bool position_loop = is_position_mode(active_mode_) ||
+                             machine_.state() == Cia402State::kQuickStopActive ||
+                             active_mode_ == Cia402Mode::kNone;
+  double v_ref =
+      position_loop ? v_ff + config_.position_gain * (p_demand - actual_position_) : v_ff;
+  const double v_max = od().get<std::uint32_t>(0x6080, 0) / 60.0 * config_.counts_per_revolution;
+  if (std::abs(v_ref) > v_max) {
+    v_ref = std::copysign(v_max, v_ref);
+    limit_active_ = true;
+  }
+  const double error = v_ref / cpr - plant.omega_in;
+  const double t_max =
+      od().get<std::uint16_t>(0x6072, 0) / 1000.0 * od().get<std::uint32_t>(0x6076, 0) / 1000.0;
+  if (config_.velocity_integral_time > 0) {
+    integral_ += config_.velocity_gain * error * dt / config_.velocity_integral_time;
+    integral_ = std::clamp(integral_, -t_max, t_max);  // anti-windup
+  }
+  double torque = config_.velocity_gain * error + integral_;
+  if (std::abs(torque) > t_max) {
+    torque = std::copysign(t_max, torque);
+    limit_active_ = true;
+  }
+  torque_ = torque;
+
+  // Following error supervision in the position modes.
+  const double following = p_demand - actual_position_;
+  od().set<std::int32_t>(0x60F4, 0, wrap_to_int32(following));
+  const auto window = od().get<std::uint32_t>(0x6065, 0);
+  if (is_position_mode(active_mode_) && window != 0xFFFFFFFFU && std::abs(following) > window) {
+    following_error_time_ += dt;
+    if (following_error_time_ * 1000 > od().get<std::uint16_t>(0x6066, 0)) {
+      following_error_ = true;
+      if (config_.following_error_is_fault) inject_fault(0x8611);
+    }
+  } else {
+    following_error_time_ = 0;
+    following_error_ = false;
+  }
+  update_target_reached(actual_position_, actual_velocity_, dt);
+  update_outputs(plant);
+  return machine_.power_stage_on() ? torque_ : 0.0;
+}
+
+void Cia402ServoDrive::update_target_reached(double position, double velocity, double dt) {
+  if (machine_.state() != Cia402State::kOperationEnabled) return;
+  auto& d = od();
+  const bool halt = d.get<std::uint16_t>(0x6040, 0) & kHalt;
+  switch (active_mode_) {
+    case Cia402Mode::kProfilePosition: {
+      if (halt) {
+        target_reached_ = profile_.velocity() == 0;
+        return;
+      }
+      const bool inside =
+          profile_done_ && std::abs(pp_target_ - position) <= d.get<std::uint32_t>(0x6067, 0);
+      in_window_time_ = inside ? in_window_time_ + dt : 0;
+      target_reached_ = inside && in_window_time_ * 1000 >= d.get<std::uint16_t>(0x6068, 0);
+      return;
+    }
+    case Cia402Mode::kProfileVelocity: {
+      const double target = halt ? 0.0 : d.get<std::int32_t>(0x60FF, 0);
+      const bool inside = std::abs(velocity - target) <= d.get<std::uint16_t>(0x606D, 0);
+      in_window_time_ = inside ? in_window_time_ + dt : 0;
+      target_reached_ = inside && in_window_time_ * 1000 >= d.get<std::uint16_t>(0x606E, 0);
+      return;
+    }
+    default:
+      target_reached_ = false;
+      return;
+  }
+}
+
+void Cia402ServoDrive::update_outputs(const PlantState& /*plant*/) {
+  auto& d = od();
+  d.set<std::int32_t>(0x6064, 0, wrap_to_int32(actual_position_));
+  d.set<std::int32_t>(0x606C, 0, wrap_to_int32(actual_velocity_));
+  d.set<std::int32_t>(0x6062, 0, wrap_to_int32(profile_.position()));
+  const double rated = d.get<std::uint32_t>(0x6076, 0) / 1000.0;
+  const double permille = std::clamp(std::round(torque_ / rated * 1000), -32768.0, 32767.0);
+  d.set<std::int16_t>(0x6077, 0, static_cast<std::int16_t>(permille));
+  d.set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+std::uint16_t Cia402ServoDrive::mode_bits() const {
+  const bool enabled = machine_.state() == Cia402State::kOperationEnabled;
+  switch (active_mode_) {
+    case Cia402Mode::kProfilePosition:
+      return static_cast<std::uint16_t>((set_point_ack_ ? 0x1000 : 0) |
+                                        (following_error_ ? 0x2000 : 0));
+    case Cia402Mode::kProfileVelocity:
+      return std::abs(actual_velocity_) <= od().get<std::uint16_t>(0x606F, 0) ? 0x1000 : 0;
+    case Cia402Mode::kCyclicSyncPosition:
+      return static_cast<std::uint16_t>((enabled ? 0x1000 : 0) | (following_error_ ? 0x2000 : 0));
+    case Cia402Mode::kCyclicSyncVelocity:
+      return enabled ? 0x1000 : 0;
+    case Cia402Mode::kNone:
+      return 0;
+  }
+  return 0;
+}
+
+std::uint16_t Cia402ServoDrive::statusword() const {
+  std::uint16_t sw = machine_.state_bits();
+  sw |= 0x0200;  // remote: the controlword is obeyed
+  if (target_reached_) sw |= 0x0400;
+  if (limit_active_) sw |= 0x0800;
+  sw |= mode_bits();
+  return sw;
+}
+
+void Cia402ServoDrive::inject_fault(std::uint16_t error_code) {
+  if (machine_.state() == Cia402State::kFault ||
+      machine_.state() == Cia402State::kFaultReactionActive) {
+    return;
+  }
+  od().set<std::uint16_t>(0x603F, 0, error_code);
+  machine_.fault();
+  torque_ = 0;
+  send_emcy(error_code, error_register_for(error_code));
+  od().set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+}  // namespace wavebench::simdevices
