@@ -40,8 +40,10 @@ std::size_t edit_distance(const std::string& a, const std::string& b) {
 std::string node_text(const YAML::Node& node) {
   if (!node.IsDefined() || node.IsNull()) return "";
   if (node.IsScalar()) return node.Scalar();
+  YAML::Node flow = YAML::Clone(node);
+  flow.SetStyle(YAML::EmitterStyle::Flow);
   YAML::Emitter out;
-  out << YAML::Flow << node;
+  out << flow;
   return out.c_str();
 }
 
@@ -69,6 +71,16 @@ std::string YamlSection::key_path(const std::string& key) const {
 
 void YamlSection::fail(const std::string& key, const std::string& value,
                        const std::string& expected) const {
+  // A required key that is missing is most often misspelt: point at the look-alike.
+  if (!key.empty() && !node_[key].IsDefined()) {
+    for (const auto& kv : node_) {
+      const std::string other = kv.first.as<std::string>();
+      if (used_.count(other) == 0 && edit_distance(lower(other), lower(key)) <= 2) {
+        throw ConfigError(key_path(key), value,
+                          expected + " (the section has '" + other + "': a misspelling?)");
+      }
+    }
+  }
   throw ConfigError(key_path(key), value, expected);
 }
 
@@ -249,7 +261,7 @@ void YamlSection::finish() const {
   for (const auto& kv : node_) {
     const std::string key = kv.first.as<std::string>();
     if (used_.count(key)) continue;
-    std::string expected = "a known key";
+    std::string expected = "no such key here";
     std::string best;
     std::size_t best_d = 3;  // suggest only near misses
     for (const auto& k : known_) {
@@ -263,9 +275,9 @@ void YamlSection::finish() const {
     if (!known_.empty() && best.empty()) {
       std::string list;
       for (const auto& k : known_) list += (list.empty() ? "" : ", ") + k;
-      expected += "; this section knows: " + list;
+      expected += " (this section knows: " + list + ")";
     }
-    throw ConfigError(key_path(key), node_text(kv.second), expected + " - unknown key");
+    throw ConfigError(key_path(key), node_text(kv.second), expected);
   }
 }
 
