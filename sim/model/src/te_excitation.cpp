@@ -2,25 +2,65 @@
 
 #include <cmath>
 
+#include "wavebench/model/angle_phasor.hpp"
+
 namespace wavebench::model {
+namespace {
+constexpr long kLongestPowerChain = 8;
+}  // namespace
 
 TeExcitation::TeExcitation(const std::vector<TeTerm>& terms) {
-  terms_.reserve(terms.size());
   for (const auto& t : terms) {
     if (t.amplitude_rad == 0.0) continue;
-    terms_.push_back({t.amplitude_rad, t.order_input, t.order_output, t.phase_rad});
+    if (!is_integer_order(t.order_input) || !is_integer_order(t.order_output)) {
+      other_terms_.push_back({t.amplitude_rad, t.order_input, t.order_output, t.phase_rad});
+      continue;
+    }
+    const auto a = static_cast<long>(t.order_input);
+    const auto b = static_cast<long>(t.order_output);
+    const Phasor phasor{t.amplitude_rad * std::cos(t.phase_rad),
+                        t.amplitude_rad * std::sin(t.phase_rad)};
+    bool merged = false;
+    for (auto& it : integer_terms_) {
+      if (it.order_input == a && it.order_output == b) {
+        it.amplitude.re += phasor.re;
+        it.amplitude.im += phasor.im;
+        merged = true;
+      }
+    }
+    if (!merged) integer_terms_.push_back({a, b, phasor});
+    if (b != 0) uses_output_angle_ = true;
   }
 }
 
 TeValue TeExcitation::evaluate(double theta1, double theta2, double omega1,
                                double omega2) const noexcept {
   TeValue v;
-  for (const Term& t : terms_) {
+  if (!integer_terms_.empty()) {
+    const Phasor z1 = unit_phasor(theta1);
+    const Phasor z2 = uses_output_angle_ ? unit_phasor(theta2) : Phasor{};
+    for (const IntegerTerm& t : integer_terms_) {
+      Phasor p;
+      if (std::abs(t.order_input) + std::abs(t.order_output) > kLongestPowerChain) {
+        // A long chain of dependent squarings costs more than one sincos of the full argument.
+        p = unit_phasor(static_cast<double>(t.order_input) * theta1 +
+                        static_cast<double>(t.order_output) * theta2);
+      } else {
+        p = unit_power(z1, t.order_input);
+        if (t.order_output != 0) p = p * unit_power(z2, t.order_output);
+      }
+      // (A e^(i phi)) e^(i arg): imaginary part A sin(arg + phi), real part A cos(arg + phi).
+      const Phasor w = t.amplitude * p;
+      v.value += w.im;
+      v.rate += (static_cast<double>(t.order_input) * omega1 +
+                 static_cast<double>(t.order_output) * omega2) *
+                w.re;
+    }
+  }
+  for (const Term& t : other_terms_) {
     const double arg = t.order_input * theta1 + t.order_output * theta2 + t.phase;
-    const double s = std::sin(arg);
-    const double c = std::cos(arg);
-    v.value += t.amplitude * s;
-    v.rate += t.amplitude * (t.order_input * omega1 + t.order_output * omega2) * c;
+    v.value += t.amplitude * std::sin(arg);
+    v.rate += t.amplitude * (t.order_input * omega1 + t.order_output * omega2) * std::cos(arg);
   }
   return v;
 }
