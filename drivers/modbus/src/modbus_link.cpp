@@ -1,11 +1,13 @@
 #include "wavebench/modbus/modbus_link.hpp"
 
 #include <modbus/modbus.h>
+#include <sys/socket.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cstring>
 #include <string>
+#include <thread>
 
 namespace wavebench::modbus {
 
@@ -100,6 +102,9 @@ void ModbusLink::fail_transport(int err, const char* during) {
     close();
   } else {
     flush_before_next_ = true;
+    if (kind == ModbusErrorKind::timeout) {
+      quiet_until_ = std::chrono::steady_clock::now() + config_.response_timeout;
+    }
   }
   throw ModbusError(kind, what);
 }
@@ -110,6 +115,7 @@ std::vector<uint8_t> ModbusLink::transact(const std::vector<uint8_t>& pdu) {
                       "modbus " + to_string(config_.endpoint) + ": not connected");
   }
   if (flush_before_next_) {
+    std::this_thread::sleep_until(quiet_until_);
     modbus_flush(ctx_);
     flush_before_next_ = false;
   }
@@ -119,10 +125,26 @@ std::vector<uint8_t> ModbusLink::transact(const std::vector<uint8_t>& pdu) {
   raw.insert(raw.end(), pdu.begin(), pdu.end());
   const uint8_t fc = pdu[0];
   ++transactions_;
-  if (modbus_send_raw_request(ctx_, raw.data(), static_cast<int>(raw.size())) == -1) {
+  if (config_.endpoint.transport == Transport::tcp) {
+    // libmodbus sends raw requests with transaction id 0; a fresh id per request lets a
+    // stale or foreign reply be told from the answer, so the MBAP header is built here.
+    last_tid_ = static_cast<uint16_t>(last_tid_ + 1);
+    const auto length = static_cast<uint16_t>(raw.size());
+    std::vector<uint8_t> adu{
+        static_cast<uint8_t>(last_tid_ >> 8), static_cast<uint8_t>(last_tid_ & 0xFF), 0, 0,
+        static_cast<uint8_t>(length >> 8),    static_cast<uint8_t>(length & 0xFF)};
+    adu.insert(adu.end(), raw.begin(), raw.end());
+    size_t sent = 0;
+    while (sent < adu.size()) {
+      const ssize_t w =
+          ::send(modbus_get_socket(ctx_), adu.data() + sent, adu.size() - sent, MSG_NOSIGNAL);
+      if (w < 0 && errno == EINTR) continue;
+      if (w <= 0) fail_transport(errno, "send");
+      sent += static_cast<size_t>(w);
+    }
+  } else if (modbus_send_raw_request(ctx_, raw.data(), static_cast<int>(raw.size())) == -1) {
     fail_transport(errno, "send");
   }
-  last_tid_ = last_tid_ < UINT16_MAX ? static_cast<uint16_t>(last_tid_ + 1) : 0;
   uint8_t rsp[MODBUS_MAX_ADU_LENGTH];
   const int n = modbus_receive_confirmation(ctx_, rsp);
   if (n == -1) fail_transport(errno, "receive");

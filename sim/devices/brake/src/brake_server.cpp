@@ -167,11 +167,6 @@ double BrakeServer::shaft_torque(double driving_torque_nm) const {
   return controller_.physics().shaft_torque(driving_torque_nm);
 }
 
-void BrakeServer::with_controller(const std::function<void(PowderBrakeController&)>& f) {
-  std::lock_guard lock(controller_mutex_);
-  f(controller_);
-}
-
 void BrakeServer::run_clock() noexcept {
   using Clock = std::chrono::steady_clock;
   auto last = Clock::now();

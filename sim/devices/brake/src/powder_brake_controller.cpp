@@ -122,7 +122,8 @@ void PowderBrakeController::step(double dt) {
   } else {
     ramped_ = 0.0;  // output off is immediate: the safe state does not ramp
   }
-  physics_.set_coil_current(torque_mode() ? physics_.current_for_torque(ramped_) : ramped_);
+  physics_.set_coil_current(torque_mode() ? physics_.current_for_torque_from_here(ramped_)
+                                          : ramped_);
   physics_.step(dt);
   publish();
 }

@@ -36,6 +36,12 @@ double PowderBrakePhysics::current_for_torque(double torque) const noexcept {
   return std::clamp(torque / k, params_.threshold_current_a, params_.rated_current_a);
 }
 
+double PowderBrakePhysics::current_for_torque_from_here(double torque) const noexcept {
+  const double rising = current_for_torque(torque);
+  if (rising >= effective_current_ || torque <= 0.0) return rising;
+  return std::max(0.0, rising - params_.hysteresis_a);
+}
+
 bool PowderBrakePhysics::stopped() const noexcept {
   return std::abs(omega_) < params_.standstill_rad_per_s;
 }

@@ -6,6 +6,7 @@
 // transaction id, unit id, function code and length, because libmodbus does not check the unit
 // id of a TCP reply and a wrong-unit reply must not be taken for the device's answer.
 
+#include <chrono>
 #include <cstdint>
 #include <vector>
 
@@ -42,8 +43,10 @@ class ModbusLink {
 
   BrakeLinkConfig config_;
   _modbus* ctx_ = nullptr;
-  uint16_t last_tid_ = 0;  // mirrors libmodbus's TCP transaction id (incremented per request)
+  uint16_t last_tid_ = 0;  // MBAP transaction id of the last TCP request
   bool flush_before_next_ = false;
+  // RTU has no transaction id: after a timeout, wait out the late reply before asking again.
+  std::chrono::steady_clock::time_point quiet_until_{};
   uint64_t transactions_ = 0;
 };
 

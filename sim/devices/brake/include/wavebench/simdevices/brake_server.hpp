@@ -13,7 +13,6 @@
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
-#include <functional>
 #include <memory>
 #include <mutex>
 #include <thread>
@@ -60,7 +59,11 @@ class BrakeServer {
   double shaft_torque(double driving_torque_nm) const;
   // Anything else, under the controller's lock (e.g. inject a coil-open fault, set the
   // temperature, read the physics).
-  void with_controller(const std::function<void(PowderBrakeController&)>& f);
+  template <typename F>
+  auto with_controller(F&& f) {
+    std::lock_guard lock(controller_mutex_);
+    return f(controller_);
+  }
 
   uint64_t requests() const noexcept { return requests_; }
   uint64_t faults_committed() const noexcept { return faults_committed_; }

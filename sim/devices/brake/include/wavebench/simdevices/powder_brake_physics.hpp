@@ -62,6 +62,10 @@ class PowderBrakePhysics {
   double static_torque(double current) const noexcept;
   // Current the rising curve needs for torque T (the inverse of static_torque within range).
   double current_for_torque(double torque) const noexcept;
+  // Current that brings the static torque to T from the present magnetic state: the rising
+  // inverse when T is above the present curve, and below it the falling branch's inverse
+  // (I = T/k − w), so a torque-mode controller lands on T from either side.
+  double current_for_torque_from_here(double torque) const noexcept;
   const PowderBrakeParams& params() const noexcept { return params_; }
 
  private:
