@@ -95,6 +95,31 @@ class ExpSine final : public OdeSystem {
   static double exact(double t) { return std::exp(std::sin(t)); }
 };
 
+// y' = -2*t*y^2; y = 1/(1 + t^2) from y(0) = 1. Nonlinear and time-dependent.
+class Rational final : public OdeSystem {
+ public:
+  std::size_t continuous_size() const override { return 1; }
+  void derivatives(double t, std::span<const double> y, std::span<const double>,
+                   std::span<double> dydt) const override {
+    dydt[0] = -2 * t * y[0] * y[0];
+  }
+  static double exact(double t) { return 1 / (1 + t * t); }
+};
+
+// y1' = r2*y2, y2' = -r2*y1 with r2 = y1^2 + y2^2: a circle of radius r run at angular speed
+// r^2, y = r*(cos r^2 t, -sin r^2 t) from (r, 0). Nonlinear and coupled.
+class NonlinearRotation final : public OdeSystem {
+ public:
+  std::size_t continuous_size() const override { return 2; }
+  void derivatives(double, std::span<const double> y, std::span<const double>,
+                   std::span<double> dydt) const override {
+    const double r2 = y[0] * y[0] + y[1] * y[1];
+    dydt[0] = r2 * y[1];
+    dydt[1] = -r2 * y[0];
+  }
+  static double exact_first(double t, double r) { return r * std::cos(r * r * t); }
+};
+
 // Prothero–Robinson: y' = -k*(y - cos t) - sin t; y = cos t + (y0 - 1)*exp(-k t).
 class ProtheroRobinson final : public OdeSystem {
  public:

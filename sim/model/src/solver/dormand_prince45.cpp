@@ -91,6 +91,18 @@ void DormandPrince45::reset(double t, std::span<const double> y) {
 
 double DormandPrince45::step(double t_max) {
   if (!(t_max > t_)) return t_;
+  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
+    // A rounding-sized remainder (e.g. an event just before t_max): no step can resolve it
+    // and the state cannot change by more than rounding, so land on t_max in place.
+    t_old_ = t_;
+    t_ = t_max;
+    y_old_ = y_;
+    k7_ = k1_;
+    r1_ = y_;
+    for (std::size_t i = 0; i < n_; ++i) r2_[i] = r3_[i] = r4_[i] = r5_[i] = 0;
+    dense_ready_ = true;
+    return t_;
+  }
   const double atol = control_.tolerances.atol;
   const double rtol = control_.tolerances.rtol;
   const bool fixed = control_.fixed_step > 0;
@@ -107,7 +119,7 @@ double DormandPrince45::step(double t_max) {
     bool truncated = false;
     // Stretch by up to 1 % rather than leave a sliver of a step before t_max (never past a
     // fixed or maximum step).
-    double stretch = fixed ? 1.0 : 1.01;
+    double stretch = fixed ? 1.0 + 1e-9 : 1.01;
     if (control_.max_step > 0 && h * stretch > control_.max_step) stretch = 1.0;
     if (t_ + stretch * h >= t_max) {
       h = t_max - t_;

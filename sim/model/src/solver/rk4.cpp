@@ -1,6 +1,7 @@
 #include "wavebench/model/solver/rk4.hpp"
 
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -43,6 +44,14 @@ void Rk4::reset(double t, std::span<const double> y) {
 
 double Rk4::step(double t_max) {
   if (!(t_max > t_)) return t_;
+  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
+    // A rounding-sized remainder: land on t_max in place (see DormandPrince45::step).
+    t_old_ = t_;
+    t_ = t_max;
+    y_old_ = y_;
+    f_old_ = f_;
+    return t_;
+  }
   const std::size_t n = n_;
   double h = h_;
   bool truncated = false;

@@ -172,6 +172,15 @@ void Rosenbrock4::attempt(double h) {
 
 double Rosenbrock4::step(double t_max) {
   if (!(t_max > t_)) return t_;
+  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
+    // A rounding-sized remainder: land on t_max in place (see DormandPrince45::step).
+    t_old_ = t_;
+    t_ = t_max;
+    y_old_ = y_;
+    cont3_.setZero();
+    cont4_.setZero();
+    return t_;
+  }
   const bool fixed = control_.fixed_step > 0;
   const double atol = control_.tolerances.atol;
   const double rtol = control_.tolerances.rtol;

@@ -1,6 +1,8 @@
 #include "wavebench/model/solver/trajectory_runner.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <limits>
 #include <stdexcept>
 #include <string>
@@ -20,11 +22,6 @@ bool crosses(double ga, double gb) {
   return (ga < 0 && gb >= 0) || (ga > 0 && gb <= 0);
 }
 
-IntegratorCounters difference(const IntegratorCounters& a, const IntegratorCounters& b) {
-  return {a.steps - b.steps, a.rejected_steps - b.rejected_steps,
-          a.rhs_evaluations - b.rhs_evaluations, a.jacobian_evaluations - b.jacobian_evaluations};
-}
-
 }  // namespace
 
 TrajectoryRunner::TrajectoryRunner(Integrator& integrator, const OdeSystem& system,
@@ -42,6 +39,8 @@ TrajectoryRunner::TrajectoryRunner(Integrator& integrator, const OdeSystem& syst
   require(std::isfinite(o.min_event_separation) && o.min_event_separation >= 0,
           "min_event_separation", o.min_event_separation, "a finite time >= 0 [s]");
   require(o.max_steps > 0, "max_steps", static_cast<double>(o.max_steps), "a count > 0");
+  require(o.witness_probes >= 0 && o.witness_probes <= 64, "witness_probes",
+          static_cast<double>(o.witness_probes), "a count in [0, 64]");
   require(std::isfinite(o.progress_interval) && o.progress_interval > 0, "progress_interval",
           o.progress_interval, "a fraction > 0");
 }
@@ -94,6 +93,58 @@ double TrajectoryRunner::locate_root(std::size_t k, double a, double ga, double 
   return b;
 }
 
+double TrajectoryRunner::find_crossings(double t_prev, double t, std::span<const double> d,
+                                        TrajectoryResult& result) {
+  const std::size_t m = g_prev_.size();
+  // Probe times inside the step: evenly spaced witness_probes, plus one just after the start
+  // when a witness sits exactly on zero there (right after its event): from zero alone the
+  // sign it leaves with is unknown, and a ball that bounces and lands again inside one step
+  // would show zero -> negative, no crossing.
+  probe_t_.clear();
+  bool zero_start = false;
+  for (std::size_t k = 0; k < m; ++k) zero_start = zero_start || g_prev_[k] == 0;
+  if (zero_start) probe_t_.push_back(t_prev + 1e-3 * (t - t_prev));
+  const int probes = options_.witness_probes;
+  for (int j = 1; j <= probes; ++j) {
+    probe_t_.push_back(t_prev + (t - t_prev) * static_cast<double>(j) / (probes + 1));
+  }
+  const std::size_t p = probe_t_.size();
+  for (std::size_t j = 0; j < p; ++j) {
+    integrator_.dense_output(probe_t_[j], y_dense_);
+    system_.witnesses(probe_t_[j], y_dense_, d, g_probe_);
+    std::copy_n(g_probe_.begin(), m, probe_g_.begin() + static_cast<std::ptrdiff_t>(j * m));
+  }
+  double t_event = std::numeric_limits<double>::infinity();
+  for (std::size_t k = 0; k < m; ++k) {
+    root_t_[k] = std::numeric_limits<double>::infinity();
+    // Walk t_prev, probes..., t and take the first sign change.
+    double ta = t_prev, ga = g_prev_[k];
+    for (std::size_t j = 0; j <= p; ++j) {
+      const double tb = j < p ? probe_t_[j] : t;
+      const double gb = j < p ? probe_g_[j * m + k] : g_new_[k];
+      if (ga == 0) {
+        ta = tb;
+        ga = gb;
+        continue;
+      }
+      if (crosses(ga, gb)) {
+        const double tr = locate_root(k, ta, ga, tb, gb, d, result);
+        if (tr < last_event_t_[k] + options_.min_event_separation) {
+          ++result.suppressed_events;
+        } else {
+          root_t_[k] = tr;
+          root_direction_[k] = ga < 0 ? +1 : -1;
+          t_event = std::min(t_event, tr);
+        }
+        break;
+      }
+      ta = tb;
+      ga = gb;
+    }
+  }
+  return t_event;
+}
+
 TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span<double> d) {
   const auto& o = options_;
   if (!(o.t_end >= t0)) {
@@ -113,10 +164,12 @@ TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span
   g_probe_.assign(system_.witness_count(), 0.0);
   last_event_t_.assign(m, -std::numeric_limits<double>::infinity());
   root_t_.assign(m, 0.0);
+  root_direction_.assign(m, 0);
+  probe_t_.reserve(static_cast<std::size_t>(o.witness_probes) + 1);
+  probe_g_.assign((static_cast<std::size_t>(o.witness_probes) + 1) * m, 0.0);
 
   TrajectoryResult result;
   integrator_.initialize(system_, t0, y, d, o.initial_step);
-  const IntegratorCounters start = integrator_.counters();
 
   if (o.sample_rate > 0) {
     // The first sample is at sample_t0, or the first grid point after t0 if that is later.
@@ -155,20 +208,7 @@ TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span
     if (m > 0) {
       system_.witnesses(t, integrator_.current_state(), d, g_probe_);
       std::copy_n(g_probe_.begin(), m, g_new_.begin());
-      double t_event = std::numeric_limits<double>::infinity();
-      // Each crossing witness is located on the same dense output; the earliest root ends
-      // the step.
-      for (std::size_t k = 0; k < m; ++k) {
-        root_t_[k] = std::numeric_limits<double>::infinity();
-        if (!crosses(g_prev_[k], g_new_[k])) continue;
-        const double tr = locate_root(k, t_prev, g_prev_[k], t, g_new_[k], d, result);
-        if (tr < last_event_t_[k] + o.min_event_separation) {
-          ++result.suppressed_events;
-          continue;
-        }
-        root_t_[k] = tr;
-        if (tr < t_event) t_event = tr;
-      }
+      const double t_event = find_crossings(t_prev, t, d, result);
       if (t_event < std::numeric_limits<double>::infinity()) {
         emit_samples_up_to(t_event, d, result);
         std::vector<double>& y_event = y_dense_;
@@ -178,7 +218,7 @@ TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span
         for (std::size_t k = 0; k < m; ++k) {
           if (root_t_[k] > t_event + o.event_tolerance) continue;
           system_.on_event(k, t_event, y_event, d);
-          result.events.push_back({t_event, k, g_prev_[k] < 0 ? +1 : -1});
+          result.events.push_back({t_event, k, root_direction_[k]});
           last_event_t_[k] = t_event;
         }
         integrator_.reset(t_event, y_event);
@@ -204,7 +244,7 @@ TrajectoryResult TrajectoryRunner::run(double t0, std::span<double> y, std::span
 
   const auto final_state = integrator_.current_state();
   std::copy(final_state.begin(), final_state.end(), y.begin());
-  result.counters = difference(integrator_.counters(), start);
+  result.counters = integrator_.counters();  // initialize() started them from zero
   result.t_final = t;
   return result;
 }

@@ -4,6 +4,9 @@
 // (Solving ODEs II, §VI.4; the coefficient set Numerical Recipes and Boost.Odeint's rosenbrock4
 // use), with Gustafsson's predictive step-size control. For stiff LuGre friction: the linear
 // solves with (I/(γh) − J) keep it stable at steps far above 1/σ0.
+// Two limits of long steps, both cured by StepControl::max_step: the dense output is 3rd
+// order, so samples between steps err like h^4; and L-stability damps a mode that should
+// grow (stick -> slip break-away), so at loose tolerances the block can stay stuck too long.
 
 #include <Eigen/Dense>
 #include <vector>

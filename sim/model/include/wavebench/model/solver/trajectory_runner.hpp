@@ -23,7 +23,10 @@ struct TrajectoryOptions {
   double event_tolerance = 1e-12;  // [s] width of the bracket a located root lies in
   // Zeno guard: a crossing of the same witness closer than this to its previous event is not
   // fired again (counted in suppressed_events).
-  double min_event_separation = 1e-10;   // [s]
+  double min_event_separation = 1e-10;  // [s]
+  // Witnesses are also checked at this many evenly spaced points inside each step, so a
+  // witness that crosses and recrosses within one step (a short contact) is not missed.
+  int witness_probes = 1;
   std::int64_t max_steps = 100'000'000;  // accepted steps before run() gives up and throws
   double progress_interval = 0.01;       // fraction of [t0, t_end] between progress calls
 };
@@ -66,6 +69,10 @@ class TrajectoryRunner {
   // Earliest sign change of witness k inside [a, b] on the dense output (Illinois).
   double locate_root(std::size_t k, double a, double ga, double b, double gb,
                      std::span<const double> d, TrajectoryResult& result);
+  // Locates the first sign change of each witness over the last step (root_t_,
+  // root_direction_) and returns the earliest root not suppressed by the Zeno guard.
+  double find_crossings(double t_prev, double t, std::span<const double> d,
+                        TrajectoryResult& result);
   void emit_samples_up_to(double t, std::span<const double> d, TrajectoryResult& result);
 
   Integrator& integrator_;
@@ -74,7 +81,9 @@ class TrajectoryRunner {
   SampleFn sample_;
   ProgressFn progress_;
   std::int64_t next_sample_ = 0;
-  std::vector<double> y_dense_, g_prev_, g_new_, g_probe_, last_event_t_, root_t_;
+  std::vector<double> y_dense_, g_prev_, g_new_, g_probe_, last_event_t_, root_t_, probe_t_,
+      probe_g_;
+  std::vector<int> root_direction_;
 };
 
 }  // namespace wavebench::model::solver
