@@ -48,7 +48,7 @@ void SyncProducer::stop() noexcept {
 }
 
 void SyncProducer::schedule() noexcept {
-  timer_.expires_at(t0_ + k_ * period_);
+  timer_.expires_at(t0_ + static_cast<std::int64_t>(k_) * period_);
   timer_.async_wait([this](const boost::system::error_code& ec) {
     if (ec == boost::asio::error::operation_aborted || !running_) return;
     fire();
@@ -56,7 +56,7 @@ void SyncProducer::schedule() noexcept {
 }
 
 void SyncProducer::fire() noexcept {
-  const auto deadline = t0_ + k_ * period_;
+  const auto deadline = t0_ + static_cast<std::int64_t>(k_) * period_;
   if (overflow_ != 0) counter_ = static_cast<std::uint8_t>(counter_ % overflow_ + 1);
   std::error_code ec;
   bus_.send(sync_frame(counter_), ec);
@@ -74,7 +74,7 @@ void SyncProducer::fire() noexcept {
   if (!running_) return;  // a hook may stop the producer
   ++k_;
   // Skip deadlines already in the past: one SYNC per wakeup, phase kept.
-  const auto behind = (now - (t0_ + k_ * period_)) / period_;
+  const auto behind = (Clock::now() - (t0_ + static_cast<std::int64_t>(k_) * period_)) / period_;
   if (behind > 0) {
     stats_.skipped += static_cast<std::uint64_t>(behind);
     k_ += static_cast<std::uint64_t>(behind);

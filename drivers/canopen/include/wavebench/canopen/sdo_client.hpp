@@ -35,6 +35,7 @@ class SdoClient {
   SdoClient& operator=(const SdoClient&) = delete;
 
   NodeId node() const noexcept { return node_; }
+  can::CanBus& bus() noexcept { return bus_; }
   void set_timeout(std::chrono::milliseconds timeout) noexcept { timeout_ = timeout; }
   std::chrono::milliseconds timeout() const noexcept { return timeout_; }
   // Whether to send an abort frame when the server stays silent past the timeout (default on).
