@@ -41,8 +41,17 @@ if [[ -z "$deb" ]]; then
   if ((${#cached_debs[@]} > 0)); then
     deb=${cached_debs[-1]}
   else
-    pkg=$(apt-cache depends linux-image-amd64 2>/dev/null |
-      awk '$1 == "Depends:" && $2 ~ /^linux-image-/ { print $2; exit }') || true
+    kernel_package() {
+      apt-cache depends linux-image-amd64 2>/dev/null |
+        awk '$1 == "Depends:" && $2 ~ /^linux-image-/ { print $2; exit }'
+    }
+    pkg=$(kernel_package) || true
+    if [[ -z "$pkg" && $(id -u) -eq 0 ]]; then
+      # Fresh CI images often ship without package lists.
+      log "no package lists for linux-image-amd64; running apt-get update"
+      apt-get update -qq >&2 || true
+      pkg=$(kernel_package) || true
+    fi
     [[ -n "$pkg" ]] || die "cannot resolve the kernel package: 'apt-cache depends linux-image-amd64'" \
       "named no linux-image-* dependency (run apt-get update, or set WAVEBENCH_VM_KERNEL_DEB)"
     log "downloading $pkg (once; cached in $cache)"
