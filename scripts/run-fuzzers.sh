@@ -1,0 +1,34 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan, whole tree instrumented) and runs each
+# for a bounded time. Usage: scripts/run-fuzzers.sh [seconds per target, default 30]
+set -euo pipefail
+seconds="${1:-30}"
+root="$(cd "$(dirname "$0")/.." && pwd)"
+build="${WAVEBENCH_FUZZ_BUILD_DIR:-$root/build-fuzz}"
+jobs="${WAVEBENCH_JOBS:-2}"
+
+cmake -S "$root" -B "$build" -G Ninja \
+  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+  -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link,address,undefined" \
+  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" \
+  -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
+  -DWAVEBENCH_WERROR=OFF >/dev/null
+targets=(fuzz_can_frames fuzz_sdo_client)
+cmake --build "$build" -j "$jobs" --target "${targets[@]}"
+
+status=0
+for t in "${targets[@]}"; do
+  corpus="$build/corpus/$t"
+  mkdir -p "$corpus"
+  echo "== $t for ${seconds}s"
+  # -timeout: any single input taking over 10 s counts as a hang.
+  if ! "$build/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
+       -print_final_stats=1 "$corpus" 2>"$build/$t.log"; then
+    echo "!! $t failed; see $build/$t.log"
+    tail -n 40 "$build/$t.log"
+    status=1
+  else
+    grep -E 'stat::number_of_executed_units|Done' "$build/$t.log" | tail -n 2 || true
+  fi
+done
+exit "$status"
