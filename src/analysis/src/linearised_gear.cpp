@@ -128,12 +128,17 @@ LinearisedGear linearise_gear(const model::GearParams& params, double mean_gear_
   gear.operating_twist_rad = x + (mean_gear_torque < 0 ? -half_backlash : half_backlash);
   gear.operating_torque_nm = mean_gear_torque;
 
+  // The mesh damping is a fixed coefficient of the model: from a damping ratio it is set with
+  // the mean stiffness given in the config, else the small-twist tangent (as the model does),
+  // not with the operating-point tangent used for the dynamics here.
   const double n2j1 = co.ratio * co.ratio * co.inertia_input;
-  const double j_eq = n2j1 * co.inertia_output / (n2j1 + co.inertia_output);
+  const double j_eq =
+      n2j1 > 0 ? n2j1 * co.inertia_output / (n2j1 + co.inertia_output) : co.inertia_output;
   if (params.damping.coefficient) {
     co.mesh_damping = *params.damping.coefficient;
   } else if (params.damping.damping_ratio) {
-    co.mesh_damping = 2 * *params.damping.damping_ratio * std::sqrt(j_eq * co.stiffness);
+    const double k_damping = mean_stiffness(params.stiffness, 0.0, nullptr, nullptr);
+    co.mesh_damping = 2 * *params.damping.damping_ratio * std::sqrt(j_eq * k_damping);
   }
   co.damping_input = params.viscous_input;
   co.damping_output = params.viscous_output;

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <sstream>
 
 namespace wavebench::analysis {
@@ -10,15 +9,6 @@ namespace {
 
 double distance(const PhasePoint& a, const PhasePoint& b) {
   return std::hypot(a.x - b.x, a.v - b.v);
-}
-
-int find_root(std::vector<int>& parent, int i) {
-  while (parent[static_cast<std::size_t>(i)] != i) {
-    parent[static_cast<std::size_t>(i)] =
-        parent[static_cast<std::size_t>(parent[static_cast<std::size_t>(i)])];
-    i = parent[static_cast<std::size_t>(i)];
-  }
-  return i;
 }
 
 // Smallest p with label[i] == label[i + p] for nearly all i: the period in strobe periods.
@@ -53,27 +43,28 @@ const char* motion_class_name(MotionClass motion) {
 
 std::vector<int> cluster_points(std::span<const PhasePoint> p, double tolerance,
                                 int* cluster_count) {
-  // Single linkage: points closer than the tolerance share a cluster.
-  const int n = static_cast<int>(p.size());
-  std::vector<int> parent(p.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j < n; ++j) {
-      if (distance(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)]) <= tolerance) {
-        parent[static_cast<std::size_t>(find_root(parent, i))] = find_root(parent, j);
+  // Leader clustering: a point joins the nearest cluster whose first point lies within the
+  // tolerance, else it starts a new one. Unlike single linkage it does not chain the dense
+  // points of a closed curve into one cluster, so a curve of length L counts about L / tol.
+  std::vector<int> labels(p.size());
+  std::vector<PhasePoint> leaders;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    int best = -1;
+    double best_d = tolerance;
+    for (std::size_t c = 0; c < leaders.size(); ++c) {
+      const double d = distance(p[i], leaders[c]);
+      if (d <= best_d) {
+        best_d = d;
+        best = static_cast<int>(c);
       }
     }
+    if (best < 0) {
+      best = static_cast<int>(leaders.size());
+      leaders.push_back(p[i]);
+    }
+    labels[i] = best;
   }
-  std::vector<int> labels(p.size());
-  std::vector<int> root_label(p.size(), -1);
-  int count = 0;
-  for (int i = 0; i < n; ++i) {
-    const int r = find_root(parent, i);
-    if (root_label[static_cast<std::size_t>(r)] < 0)
-      root_label[static_cast<std::size_t>(r)] = count++;
-    labels[static_cast<std::size_t>(i)] = root_label[static_cast<std::size_t>(r)];
-  }
-  if (cluster_count) *cluster_count = count;
+  if (cluster_count) *cluster_count = static_cast<int>(leaders.size());
   return labels;
 }
 

@@ -77,11 +77,12 @@ std::vector<AttributedPeak> attribute_peaks(const std::vector<SpectralPeak>& pea
       ap.label = "unattributed";
       // Harmonics and combination tones of the terms: what a nonlinearity (backlash, cubic
       // stiffness) makes of them.
-      double best = tolerance;
+      // Strict comparisons: on a tie the first (larger listed) term keeps the label.
+      double best = tolerance * (1 + 1e-12);
       for (std::size_t i = 0; i < lines.size(); ++i) {
         for (int h = 2; h <= 4; ++h) {
           const double f = folded_frequency_hz(h * lines[i].frequency_hz, input.sample_rate_hz);
-          if (std::abs(f - peak.frequency_hz) <= best) {
+          if (std::abs(f - peak.frequency_hz) < best) {
             best = std::abs(f - peak.frequency_hz);
             ap.label = "nonlinear: " + std::to_string(h) + "*" + lines[i].name;
           }
@@ -91,11 +92,11 @@ std::vector<AttributedPeak> attribute_peaks(const std::vector<SpectralPeak>& pea
           const double sum = folded_frequency_hz(lines[i].frequency_hz + lines[j].frequency_hz,
                                                  input.sample_rate_hz);
           const double diff = std::abs(lines[i].frequency_hz - lines[j].frequency_hz);
-          if (std::abs(sum - peak.frequency_hz) <= best) {
+          if (std::abs(sum - peak.frequency_hz) < best) {
             best = std::abs(sum - peak.frequency_hz);
             ap.label = "nonlinear: " + lines[i].name + "+" + lines[j].name;
           }
-          if (std::abs(diff - peak.frequency_hz) <= best) {
+          if (std::abs(diff - peak.frequency_hz) < best) {
             best = std::abs(diff - peak.frequency_hz);
             ap.label = "nonlinear: " + lines[i].name + "-" + lines[j].name;
           }

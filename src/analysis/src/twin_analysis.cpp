@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "wavebench/analysis/signal_channel.hpp"
@@ -49,6 +50,17 @@ const model::TeTerm* strobe_term(const model::GearParams& params, const Poincare
     }
   }
   return best;
+}
+
+double drive_frequency_hz(const model::GearParams& params) {
+  if (const auto* dc = std::get_if<model::DcMotorInput>(&params.input)) {
+    if (dc->voltage.amplitude != 0) return dc->voltage.frequency_hz;
+  }
+  if (const auto* tq = std::get_if<model::TorqueInput>(&params.input)) {
+    if (tq->torque.amplitude != 0) return tq->torque.frequency_hz;
+  }
+  if (params.load.output_torque.amplitude != 0) return params.load.output_torque.frequency_hz;
+  return 0;
 }
 
 }  // namespace
@@ -125,19 +137,30 @@ TwinAnalysis analyse_twin_run(const model::GearParams& params,
   const LinearGearCoefficients* co = linear ? &linear->coefficients : nullptr;
   const model::TeTerm* term =
       strobe_term(params, options.poincare, co, out.signal, out.mean_input_speed);
+  // Without TE terms the drive's (or the load's) sinusoid is the excitation to strobe by; the
+  // wave-generator revolution is the last resort.
+  const double drive_hz = term ? 0.0 : drive_frequency_hz(params);
   if (n == r.t.size() && r.theta1.size() == n && r.te.size() == n) {
     const double a = term ? term->order_input : 1.0;
     const double b = term ? term->order_output : 0.0;
     std::vector<double> phase(n);
     for (std::size_t i = 0; i < n; ++i) {
-      phase[i] = (a + b / params.geometry.ratio) * r.theta1[i] + b * r.te[i];
+      phase[i] = drive_hz > 0 ? 2 * std::numbers::pi * drive_hz * r.t[i]
+                              : (a + b / params.geometry.ratio) * r.theta1[i] + b * r.te[i];
     }
     out.poincare = strobe_on_phase(r.t, phase, r.twist, r.twist_rate);
   }
-  out.poincare.excitation_source = term ? term->source : "wave generator revolution";
-  out.poincare.excitation_frequency_hz =
-      term ? model::te_term_frequency_hz(*term, params.geometry, out.mean_input_speed)
-           : out.mean_input_speed / (2 * 3.14159265358979323846);
+  if (term) {
+    out.poincare.excitation_source = term->source;
+    out.poincare.excitation_frequency_hz =
+        model::te_term_frequency_hz(*term, params.geometry, out.mean_input_speed);
+  } else if (drive_hz > 0) {
+    out.poincare.excitation_source = "drive/load sinusoid";
+    out.poincare.excitation_frequency_hz = drive_hz;
+  } else {
+    out.poincare.excitation_source = "wave generator revolution";
+    out.poincare.excitation_frequency_hz = out.mean_input_speed / (2 * std::numbers::pi);
+  }
   // The first quarter of the section may still hold the transient's approach to the attractor.
   const auto& section = out.poincare.points;
   const std::size_t skip = section.size() >= 32 ? section.size() / 4 : 0;

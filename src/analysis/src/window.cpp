@@ -56,15 +56,15 @@ const char* window_name(Window window) {
 }
 
 double window_lobe(Window window, double offset_bins) {
-  // Continuous-time limit of the window's DTFT: a sum of sinc kernels shifted by whole bins,
-  // sin(pi (d - m)) / (pi (d - m)) = (-1)^m sin(pi d) / (pi (d - m)).
+  // Long-record limit of the window's DTFT: sinc kernels shifted by whole bins. The kernel's
+  // linear phase flips the sign of every odd shift, which cancels the (-1)^k of the window
+  // formula, so each shift k enters with +a_k / 2.
   const auto a = cosine_terms(window);
-  const double d = offset_bins;
   double sum = 0;
   for (int m = -4; m <= 4; ++m) {
-    const int k = m < 0 ? -m : m;
-    const double c = k == 0 ? a[0] : 0.5 * a[static_cast<std::size_t>(k)] * ((k % 2) ? -1.0 : 1.0);
-    const double x = d - m;
+    const auto k = static_cast<std::size_t>(m < 0 ? -m : m);
+    const double c = k == 0 ? a[0] : 0.5 * a[k];
+    const double x = offset_bins - m;
     const double kernel =
         std::abs(x) < 1e-9 ? 1.0 : std::sin(std::numbers::pi * x) / (std::numbers::pi * x);
     sum += c * kernel;
