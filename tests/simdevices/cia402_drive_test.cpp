@@ -198,3 +198,40 @@ TEST_F(Cia402DriveTest, UnsupportedModeIsRefused) {
 
 }  // namespace
 }  // namespace wavebench::simdevices::testing
+
+namespace wavebench::simdevices::testing {
+namespace {
+
+class CyclicSyncTest : public BenchFixture {
+ protected:
+  CyclicSyncTest() : BenchFixture(BenchClock::kSyncDriven) {}
+};
+
+TEST_F(CyclicSyncTest, CspFollowsTargetsSentByRpdoOnEverySync) {
+  exchange(0x601, {0x23, 0x01, 0x14, 0x01, 0x01, 0x03, 0x00, 0x00});  // RPDO2 valid
+  exchange(0x601, {0x2F, 0x60, 0x60, 0x00, 0x08, 0, 0, 0});           // CSP
+  send(0x000, {0x01, 0x01});
+  std::int32_t target = 0;
+  const std::uint16_t cws[] = {0x06, 0x07, 0x0F};
+  for (const auto cw : cws) {
+    send(0x301, {static_cast<std::uint8_t>(cw), 0, 0, 0, 0, 0});
+    send(0x080, {});
+  }
+  EXPECT_EQ(bench->drive().state(), Cia402State::kOperationEnabled);
+  for (int i = 0; i < 300; ++i) {
+    target += 200;  // 200 increments per 1 ms cycle
+    const auto t = static_cast<std::uint32_t>(target);
+    send(0x301, {0x0F, 0x00, static_cast<std::uint8_t>(t), static_cast<std::uint8_t>(t >> 8),
+                 static_cast<std::uint8_t>(t >> 16), static_cast<std::uint8_t>(t >> 24)});
+    send(0x080, {});
+  }
+  const auto moving_error = bench->drive().od().get<std::int32_t>(0x60F4, 0);
+  EXPECT_LT(std::abs(moving_error), 400);  // velocity feed-forward keeps the lag small
+  for (int i = 0; i < 100; ++i) send(0x080, {});
+  EXPECT_NEAR(bench->drive().od().get<std::int32_t>(0x6064, 0), target, 20);
+  EXPECT_EQ(bench->drive().statusword() & 0x1000, 0x1000);  // following the target
+  EXPECT_NEAR(bench->now(), 403e-3, 1e-9);
+}
+
+}  // namespace
+}  // namespace wavebench::simdevices::testing
