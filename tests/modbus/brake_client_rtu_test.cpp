@@ -81,7 +81,7 @@ TEST_F(BrakeClientRtu, FaultsGiveClearErrorsAndTheLinkRecovers) {
   for (const auto& c : cases) {
     simdevices::BrakeFault f;
     f.kind = c.kind;
-    f.delay = 700ms;
+    f.delay = 2500ms;
     f.requests = 1;
     server->inject_fault(f);
     try {

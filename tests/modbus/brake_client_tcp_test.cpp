@@ -130,7 +130,7 @@ TEST(BrakeSupervisorTcp, WatchdogTripsWhenHeartbeatsStop) {
   auto r = client.read();
   EXPECT_TRUE(r.status.output_on) << r.alarm_text;
   EXPECT_FALSE(r.status.watchdog_tripped);
-  EXPECT_EQ(server->with_controller([](auto& c) { return c.holding()[1]; }), 300);
+  EXPECT_EQ(server->with_controller([](auto& c) { return c.holding()[1]; }), 1500);
 
   supervisor.suspend_heartbeat(true);
   ASSERT_TRUE(eventually([&] { return client.read().status.watchdog_tripped; }));
@@ -169,7 +169,7 @@ TEST(BrakeSupervisorTcp, LinkLossRaisesSafetyEventAndRecovers) {
   EXPECT_FALSE(supervisor.link_lost());
   // The restarted controller's watchdog was armed again.
   ASSERT_TRUE(eventually(
-      [&] { return server->with_controller([](auto& c) { return c.holding()[1]; }) == 300; }));
+      [&] { return server->with_controller([](auto& c) { return c.holding()[1]; }) == 1500; }));
   EXPECT_EQ(sink.count(modbus::BrakeEvent::Kind::link_lost), 1);
 }
 

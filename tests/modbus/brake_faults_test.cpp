@@ -16,7 +16,7 @@ class BrakeFaultsTcp : public ::testing::Test {
   void inject(BrakeFaultKind kind, int requests = -1) {
     BrakeFault f;
     f.kind = kind;
-    f.delay = 800ms;  // well past the 300 ms response timeout
+    f.delay = 2500ms;  // well past the 1000 ms response timeout
     f.requests = requests;
     server->inject_fault(f);
   }
@@ -26,7 +26,7 @@ class BrakeFaultsTcp : public ::testing::Test {
     try {
       client.read();
     } catch (const ModbusError& e) {
-      EXPECT_LT(std::chrono::steady_clock::now() - t0, 5s) << "hung past the timeouts";
+      EXPECT_LT(std::chrono::steady_clock::now() - t0, 10s) << "hung past the timeouts";
       return e;
     }
     ADD_FAILURE() << "read succeeded under a fault";
@@ -50,7 +50,7 @@ TEST_F(BrakeFaultsTcp, DelayedReplyTimesOutThenRecovers) {
   inject(BrakeFaultKind::delayed_reply);
   const auto e = read_error();
   EXPECT_EQ(e.kind(), ModbusErrorKind::timeout) << e.what();
-  EXPECT_NE(std::string(e.what()).find("response timeout 300 ms"), std::string::npos) << e.what();
+  EXPECT_NE(std::string(e.what()).find("response timeout 1000 ms"), std::string::npos) << e.what();
   server->clear_fault();
   EXPECT_TRUE(recovers());
 }
@@ -105,26 +105,49 @@ TEST_F(BrakeFaultsTcp, GarbageBytesAreRejected) {
   EXPECT_TRUE(recovers());
 }
 
-TEST_F(BrakeFaultsTcp, BackoffGrowsWhileTheControllerIsAway) {
+TEST_F(BrakeFaultsTcp, NoReconnectAttemptsDuringTheBackoff) {
   const int port = server->port();
   server.reset();
-  BrakeClient lonely(client_config_tcp(port));
+  auto cfg = client_config_tcp(port);
+  cfg.link.reconnect_initial_backoff = 30s;  // longer than the test: no second attempt
+  cfg.link.reconnect_max_backoff = 120s;
+  BrakeClient lonely(cfg);
   int refused = 0;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 5; ++i) {
     try {
       lonely.read();
     } catch (const ModbusError& e) {
       EXPECT_EQ(e.kind(), ModbusErrorKind::not_connected) << e.what();
+      if (i > 0) {
+        EXPECT_NE(std::string(e.what()).find("next attempt in"), std::string::npos);
+      }
       ++refused;
     }
-    std::this_thread::sleep_for(30ms);
   }
-  EXPECT_EQ(refused, 6);
-  // Calls during the backoff do not count as attempts: fewer attempts than calls.
-  EXPECT_GE(lonely.backoff().failures(), 1);
-  EXPECT_LT(lonely.backoff().failures(), 6);
-  EXPECT_GT(lonely.backoff().current_delay(), 20ms);
-  EXPECT_LE(lonely.backoff().current_delay(), 200ms);
+  EXPECT_EQ(refused, 5);
+  EXPECT_EQ(lonely.backoff().failures(), 1);
+  EXPECT_EQ(lonely.backoff().current_delay(), 60s);
+}
+
+TEST(ReconnectBackoff, DoublesUpToTheCeilingAndResets) {
+  modbus::ReconnectBackoff b(100ms, 700ms);
+  const auto t0 = modbus::ReconnectBackoff::Clock::time_point{} + 1h;
+  EXPECT_TRUE(b.due(t0));
+  b.failed(t0);
+  EXPECT_FALSE(b.due(t0 + 99ms));
+  EXPECT_TRUE(b.due(t0 + 100ms));
+  b.failed(t0 + 100ms);  // waits 200 ms
+  EXPECT_FALSE(b.due(t0 + 299ms));
+  EXPECT_TRUE(b.due(t0 + 300ms));
+  b.failed(t0 + 300ms);  // 400 ms
+  b.failed(t0 + 700ms);  // 700 ms (ceiling), not 800
+  EXPECT_FALSE(b.due(t0 + 1399ms));
+  EXPECT_TRUE(b.due(t0 + 1400ms));
+  EXPECT_EQ(b.current_delay(), 700ms);
+  EXPECT_EQ(b.failures(), 4);
+  b.succeeded();
+  EXPECT_EQ(b.current_delay(), 100ms);
+  EXPECT_TRUE(b.due(t0));
 }
 
 }  // namespace

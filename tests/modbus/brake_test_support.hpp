@@ -1,6 +1,7 @@
 #pragma once
 // Shared by the Modbus integration tests: a simulated controller on an ephemeral loopback port
-// (or a pty) and a client config that points at it with short, bounded timeouts.
+// (or a pty) and a client config that points at it with bounded timeouts, generous enough
+// for a loaded machine or an emulator.
 
 #include <chrono>
 #include <memory>
@@ -24,13 +25,13 @@ inline std::unique_ptr<simdevices::BrakeServer> start_tcp_brake(bool real_time =
 inline modbus::BrakeClientConfig client_config_tcp(int port) {
   modbus::BrakeClientConfig c;
   c.link.endpoint = modbus::parse_modbus_endpoint("tcp:127.0.0.1:" + std::to_string(port));
-  c.link.response_timeout = 300ms;
-  c.link.byte_timeout = 100ms;
-  c.link.link_loss_timeout = 600ms;
+  c.link.response_timeout = 1000ms;
+  c.link.byte_timeout = 200ms;
+  c.link.link_loss_timeout = 1500ms;
   c.link.reconnect_initial_backoff = 20ms;
   c.link.reconnect_max_backoff = 200ms;
   c.heartbeat.period = 50ms;
-  c.heartbeat.watchdog_timeout = 300ms;
+  c.heartbeat.watchdog_timeout = 1500ms;
   return c;
 }
 
