@@ -58,5 +58,27 @@ TEST_F(MbpollPeer, OutOfMapAddressGetsAnException) {
   EXPECT_NE(out.find("Illegal data address"), std::string::npos) << out;
 }
 
+TEST(MbpollPeerRtu, ReadsAndWritesOverAPty) {
+  if (access("/usr/bin/mbpoll", X_OK) != 0) GTEST_SKIP() << "mbpoll not installed";
+  simdevices::PtyPair pty;
+  simdevices::BrakeServerOptions o;
+  o.endpoint = modbus::parse_modbus_endpoint("rtu:" + pty.slave_path());
+  o.rtu_fd = pty.release_master();
+  o.real_time = false;
+  auto server = simdevices::start_brake_server(o);
+  const std::string base =
+      "/usr/bin/mbpoll -m rtu -b 19200 -P none -a 1 -0 -1 -o 2 " + pty.slave_path() + " ";
+  int st = 0;
+  std::string out = run_command(base + "-t 4:float -B -r 10 1.25", st);
+  ASSERT_EQ(st, 0) << out;
+  out = run_command(base + "-t 4 -r 0 1", st);
+  ASSERT_EQ(st, 0) << out;
+  server->step(5.0);
+  out = run_command(base + "-t 3:float -B -r 10 -c 2", st);
+  ASSERT_EQ(st, 0) << out;
+  EXPECT_NE(out.find("[10]: \t1.25"), std::string::npos) << out;
+  EXPECT_NE(out.find("[12]: \t62.5"), std::string::npos) << out;
+}
+
 }  // namespace
 }  // namespace wavebench::testing
