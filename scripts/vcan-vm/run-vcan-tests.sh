@@ -8,6 +8,7 @@
 #   WAVEBENCH_VM_CACHE    where the kernel/initramfs are cached (default BUILD_DIR/vcan-vm)
 #   WAVEBENCH_VM_MEMORY   guest memory in MiB (default 1024)
 #   WAVEBENCH_VM_SMP      guest CPUs (default 2)
+#   WAVEBENCH_VM_CPU      qemu -cpu model (default max: RDRAND seeds the guest's RNG at once)
 set -euo pipefail
 
 here=$(cd "$(dirname "$0")" && pwd)
@@ -36,6 +37,8 @@ memory=${WAVEBENCH_VM_MEMORY:-1024}
 [[ "$memory" =~ ^[0-9]+$ ]] || die "WAVEBENCH_VM_MEMORY='$memory': expected MiB as a number"
 smp=${WAVEBENCH_VM_SMP:-2}
 [[ "$smp" =~ ^[1-9][0-9]*$ ]] || die "WAVEBENCH_VM_SMP='$smp': expected a CPU count >= 1"
+cpu=${WAVEBENCH_VM_CPU:-max}
+[[ "$cpu" =~ ^[A-Za-z0-9_.,=+-]+$ ]] || die "WAVEBENCH_VM_CPU='$cpu': expected a qemu CPU model"
 cache=${WAVEBENCH_VM_CACHE:-$build/vcan-vm}
 vmdir=$build/vcan-vm
 run=$vmdir/run
@@ -70,12 +73,12 @@ if [[ $(id -u) -ne 0 ]]; then
 fi
 
 qemu=(
-  qemu-system-x86_64 -accel tcg -cpu max -smp "$smp" -m "$memory"
+  qemu-system-x86_64 -accel tcg -cpu "$cpu" -smp "$smp" -m "$memory"
   -nodefaults -display none -no-reboot -serial stdio
   -kernel "$cache/vmlinuz" -initrd "$cache/initramfs.cpio.gz"
   -append "console=ttyS0 quiet loglevel=3 panic=-1"
   -virtfs "local,path=/,mount_tag=hostroot,security_model=$security,readonly=on,multidevs=remap"
-  -virtfs "local,path=$build,mount_tag=buildshare,security_model=$security,multidevs=remap"
+  -virtfs "local,path=${build//,/,,},mount_tag=buildshare,security_model=$security,multidevs=remap"
 )
 
 echo "vcan-vm: booting $(cat "$cache/kernel.version" 2>/dev/null || echo '?') under TCG" \
