@@ -98,6 +98,28 @@ GearModel::GearModel(const GearParams& params, bool locate_events)
     throw std::invalid_argument("damping = " + num(damping_) + " N*m*s/rad: expected >= 0");
   }
 
+  // Fastest excitation at the nominal input speed, for the error scales.
+  double nominal_speed = params.nominal_input_speed;
+  if (const auto* k = std::get_if<KinematicInput>(&params.input)) {
+    nominal_speed = k->speed;
+    if (k->trace_t.size() >= 2) {
+      nominal_speed = (k->trace_theta.back() - k->trace_theta.front()) /
+                      (k->trace_t.back() - k->trace_t.front());
+    }
+  }
+  auto line = [&](double a, double b) { return std::abs((a + b * inv_ratio_) * nominal_speed); };
+  for (const auto& t : params.te_terms) {
+    fastest_line_ = std::max(fastest_line_, line(t.order_input, t.order_output));
+  }
+  for (const auto& h : params.stiffness.modulation) {
+    fastest_line_ = std::max(fastest_line_, line(h.order_input, h.order_output));
+  }
+  if (const auto* l = std::get_if<LinearPeriodicStiffness>(&params.stiffness.law)) {
+    for (const auto& h : l->harmonics) {
+      fastest_line_ = std::max(fastest_line_, line(h.order_input, h.order_output));
+    }
+  }
+
   // State layout.
   int n = 0;
   auto next = [&n] { return n++; };
@@ -378,12 +400,14 @@ std::vector<double> GearModel::initial_discrete() const {
 
 void GearModel::error_scale(std::span<double> scale) const {
   const StateLayout& L = layout_;
-  // Angles: the larger of an arcsecond, the clearance and the static twist; rates: that angle
-  // over the natural period.
+  // Angles: the larger of an arcsecond, the clearance and the static twist. Rates: that angle
+  // at the fastest motion the model has, its mesh resonance or its fastest excitation line at
+  // the nominal speed. atol acts on these near the zero crossings of an oscillating rate;
+  // any smaller and the step size collapses there without the lines getting more accurate.
   const auto y0 = initial_state();
   const double angle = std::max({kArcsec, dead_zone_.half_width(), std::abs(y0[L.twist])});
-  const double omega_n =
-      j_eq_ > 0 && mean_stiffness_ > 0 ? std::sqrt(mean_stiffness_ / j_eq_) : 1.0;
+  const double omega_n = std::max(
+      fastest_line_, j_eq_ > 0 && mean_stiffness_ > 0 ? std::sqrt(mean_stiffness_ / j_eq_) : 1.0);
   std::fill(scale.begin(), scale.end(), 1.0);
   if (L.input_angle >= 0) {
     scale[L.input_angle] = ratio_ * angle;

@@ -90,6 +90,7 @@ class GearModel final : public solver::OdeSystem {
   StateLayout layout_;
   double ratio_ = 0, inv_ratio_ = 0, j1_ = 0, j2_ = 0, omega_ref_ = 0;
   double mean_stiffness_ = 0, damping_ = 0, j_eq_ = 0;
+  double fastest_line_ = 0;  // [rad/s] fastest TE or stiffness line at the nominal speed
   TeExcitation te_;
   BacklashDeadZone dead_zone_;
   Spring spring_;
