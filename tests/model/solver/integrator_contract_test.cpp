@@ -200,6 +200,34 @@ TEST_P(IntegratorContract, EnergyOfUndampedOscillatorDriftsLittleOver1000Periods
   EXPECT_LT(std::fabs(system.energy(y) - e0) / e0, 1e-8);
 }
 
+TEST_P(IntegratorContract, ResetRestartsFromTheGivenState) {
+  const ExponentialDecay system(1.5);
+  auto integrator = make();
+  integrator->initialize(system, 0.0, std::vector<double>{1.0}, {}, 0);
+  while (integrator->current_time() < 1.0) integrator->step(1.0);
+  // An event at t = 1 sets y = 3: from there y = 3 exp(-1.5 (t - 1)).
+  integrator->reset(1.0, std::vector<double>{3.0});
+  EXPECT_EQ(integrator->current_time(), 1.0);
+  EXPECT_EQ(integrator->current_state()[0], 3.0);
+  while (integrator->current_time() < 2.5) integrator->step(2.5);
+  EXPECT_NEAR(integrator->current_state()[0], 3.0 * std::exp(-1.5 * 1.5), 3e-2 * bound());
+}
+
+TEST_P(IntegratorContract, StepsRespectMaxStepAndTMax) {
+  const LinearOscillator system(2 * kPi, 0.1);
+  const double max_step = GetParam().kind == IntegratorKind::kRk4 ? 1e-3 : 0.01;
+  auto integrator = make(max_step);
+  integrator->initialize(system, 0.0, std::vector<double>{1.0, 0.0}, {}, 0);
+  double widest = 0;
+  while (integrator->current_time() < 0.737) {
+    const double t = integrator->step(0.737);
+    EXPECT_LE(t, 0.737);
+    widest = std::max(widest, t - integrator->previous_time());
+  }
+  EXPECT_EQ(integrator->current_time(), 0.737);
+  EXPECT_LE(widest, max_step * (1 + 1e-9));
+}
+
 INSTANTIATE_TEST_SUITE_P(
     AllIntegrators, IntegratorContract,
     ::testing::Values(
