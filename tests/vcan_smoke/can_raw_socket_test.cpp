@@ -14,6 +14,7 @@
 #include <system_error>
 #include <vector>
 
+#include "rx_timestamping.hpp"
 #include "vcan_fixture.hpp"
 
 namespace wavebench::vcan_smoke {
@@ -173,6 +174,7 @@ TEST_F(CanRawOnVcan, LoopbackOffHidesFramesFromOtherLocalSockets) {
 }
 
 TEST_F(CanRawOnVcan, TimestampsLieBetweenSendAndReceiveAndAgreeAcrossApis) {
+  const RxTimestampingOn stamping(kVcan);
   CanRawSocket rx_us(kVcan);
   rx_us.set_timestamps(CanRawSocket::Timestamps::kMicroseconds);
   CanRawSocket rx_ns(kVcan);

@@ -15,6 +15,7 @@
 
 #include "can_raw_socket.hpp"
 #include "can_utils_process.hpp"
+#include "rx_timestamping.hpp"
 #include "vcan_fixture.hpp"
 
 namespace wavebench::vcan_smoke {
@@ -149,6 +150,7 @@ TEST_F(CanUtilsOnVcan, CansendRejectsMalformedFramesAndSendsNothing) {
 }
 
 TEST_F(CanUtilsOnVcan, CandumpPrintsTheFramesAndTimestampsOurSocketSees) {
+  const RxTimestampingOn stamping(kVcan);
   CanRawSocket rx(kVcan);
   rx.set_timestamps(CanRawSocket::Timestamps::kMicroseconds);
   // candump's "123:7FF" is the kernel's {0x123, 0x7FF}: the mask has no EFF flag, so an
