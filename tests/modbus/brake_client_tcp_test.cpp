@@ -65,6 +65,21 @@ TEST_F(BrakeClientTcp, RampIsFollowed) {
   EXPECT_TRUE(client.read().status.at_setpoint);
 }
 
+TEST_F(BrakeClientTcp, MakeSafeSwitchesOffAndZeroesTheSetpoint) {
+  client.set_setpoint(1.0, BrakeMode::current, 0.0);
+  client.enable();
+  server->step(1.0);
+  ASSERT_TRUE(client.read().status.output_on);
+  client.make_safe();
+  server->step(0.001);
+  const auto r = client.read();
+  EXPECT_FALSE(r.status.output_on);
+  EXPECT_EQ(r.coil_current_a, 0.0);
+  client.enable();  // enabling again does not bring the old setpoint back
+  server->step(1.0);
+  EXPECT_EQ(client.read().coil_current_a, 0.0);
+}
+
 TEST_F(BrakeClientTcp, LimitsAreCheckedBeforeWriting) {
   EXPECT_THROW(client.set_setpoint(2.5, BrakeMode::current, 0.0), std::invalid_argument);
   EXPECT_THROW(client.set_setpoint(-1.0, BrakeMode::current, 0.0), std::invalid_argument);

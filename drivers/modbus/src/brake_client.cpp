@@ -115,6 +115,12 @@ void BrakeClient::set_setpoint(double value, BrakeMode mode, double ramp_per_s) 
   write_value(config_.map.setpoint, value);
 }
 
+void BrakeClient::make_safe() {
+  disable();
+  write_value(config_.map.setpoint_ramp, 0.0);
+  write_value(config_.map.setpoint, 0.0);
+}
+
 void BrakeClient::set_watchdog(std::chrono::milliseconds timeout) {
   write_value(config_.map.watchdog_timeout_ms, static_cast<double>(timeout.count()));
 }

@@ -47,6 +47,9 @@ class BrakeClient {
   // Ramp (units per second, 0 = step) then setpoint; checks both against the limits first
   // and throws std::invalid_argument naming the value and the allowed range.
   void set_setpoint(double value, BrakeMode mode, double ramp_per_s);
+  // The safe state of bench.md §7: output off first, then setpoint 0 (as a step), so the
+  // brake stays released if something enables it again.
+  void make_safe();
   void set_watchdog(std::chrono::milliseconds timeout);
   void heartbeat();  // writes the next counter value
   BrakeReadback read();
