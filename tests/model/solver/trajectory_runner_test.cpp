@@ -265,6 +265,29 @@ TEST(TrajectoryRunner, RejectsBadOptionsByName) {
                std::invalid_argument);
 }
 
+TEST(TrajectoryRunner, RejectsAZeroErrorScaleByIndex) {
+  struct ZeroScale final : public OdeSystem {
+    std::size_t continuous_size() const override { return 2; }
+    void derivatives(double, std::span<const double>, std::span<const double>,
+                     std::span<double> f) const override {
+      f[0] = f[1] = 0;
+    }
+    void error_scale(std::span<double> s) const override {
+      s[0] = 1;
+      s[1] = 0;
+    }
+  } system;
+  for (auto kind : {IntegratorKind::kDormandPrince45, IntegratorKind::kRosenbrock}) {
+    auto integrator = make_integrator(kind, {}, 0, 0);
+    try {
+      integrator->initialize(system, 0.0, std::vector<double>{0.0, 0.0}, {}, 0);
+      FAIL() << "expected std::invalid_argument";
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("error_scale()[1]"), std::string::npos) << e.what();
+    }
+  }
+}
+
 TEST(TrajectoryRunner, CountsEvaluationsExactly) {
   // DormandPrince45: 1 at start, 1 in the first-step guess, 6 per attempted step (FSAL).
   const testing::ExponentialDecay system(1.0);

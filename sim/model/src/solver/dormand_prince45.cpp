@@ -60,6 +60,7 @@ void DormandPrince45::initialize(const OdeSystem& system, double t0, std::span<c
     v->assign(n_, 0.0);
   }
   system.error_scale(error_scale_);
+  validate_error_scale(error_scale_);
   counters_ = {};
   err_old_ = 1e-4;
   last_rejected_ = false;

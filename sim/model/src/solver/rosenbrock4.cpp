@@ -72,6 +72,7 @@ void Rosenbrock4::initialize(const OdeSystem& system, double t0, std::span<const
   iteration_matrix_.setZero(n, n);
   lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
   system.error_scale({error_scale_.data(), n_});
+  validate_error_scale({error_scale_.data(), n_});
   counters_ = {};
   first_step_ = true;
   h_ = control_.fixed_step > 0 ? control_.fixed_step : h0;

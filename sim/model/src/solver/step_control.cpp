@@ -26,4 +26,14 @@ void validate(const StepControl& control) {
           control.fixed_step, "a finite number >= 0 (0 = adaptive)");
 }
 
+void validate_error_scale(std::span<const double> scale) {
+  for (std::size_t i = 0; i < scale.size(); ++i) {
+    if (!(std::isfinite(scale[i]) && scale[i] > 0)) {
+      throw std::invalid_argument("OdeSystem::error_scale()[" + std::to_string(i) +
+                                  "] = " + std::to_string(scale[i]) +
+                                  ": expected a finite characteristic size > 0");
+    }
+  }
+}
+
 }  // namespace wavebench::model::solver

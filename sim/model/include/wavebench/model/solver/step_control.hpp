@@ -1,6 +1,8 @@
 #pragma once
 // Settings shared by the integrators that pick their own step size.
 
+#include <span>
+
 #include "wavebench/model/solver/integrator.hpp"
 
 namespace wavebench::model::solver {
@@ -15,5 +17,9 @@ struct StepControl {
 
 // Throws std::invalid_argument naming the field, the value and what was expected.
 void validate(const StepControl& control);
+
+// The system's error_scale() must be finite and > 0 for every state, else the error norm
+// divides by zero; throws std::invalid_argument naming the index and the value.
+void validate_error_scale(std::span<const double> scale);
 
 }  // namespace wavebench::model::solver
