@@ -166,30 +166,39 @@ GearModel::GearModel(const GearParams& params, bool locate_events)
   layout_.witness_count = static_cast<std::size_t>(w);
 }
 
+GearModel::MeshMotion GearModel::mesh_motion(double t, const double* y) const noexcept {
+  const StateLayout& L = layout_;
+  MeshMotion m;
+  if (kinematic_) {
+    const InputMotion in = std::get<KinematicMotion>(drive_).at(t);
+    m.theta1 = in.theta;
+    m.omega1 = in.omega;
+    m.alpha1 = in.alpha;
+  } else {
+    m.u1 = y[L.input_angle];
+    m.theta1 = omega_ref_ * t + m.u1;
+    m.omega1 = omega_ref_ + y[L.input_speed];
+  }
+  m.q = y[L.twist];
+  m.r = y[L.twist_rate];
+  m.theta2 = m.theta1 * inv_ratio_ - m.q;
+  m.omega2 = m.omega1 * inv_ratio_ - m.r;
+  m.e = te_.evaluate(m.theta1, m.theta2, m.omega1, m.omega2);
+  m.delta = m.q - m.e.value;
+  m.delta_rate = m.r - m.e.rate;
+  return m;
+}
+
 void GearModel::evaluate(double t, const double* y, const double* d, double* dydt,
                          GearOutputs* out) const {
   const StateLayout& L = layout_;
-  // Input side.
-  double theta1, omega1, alpha1 = 0, u1 = 0;
-  if (kinematic_) {
-    const InputMotion m = std::get<KinematicMotion>(drive_).at(t);
-    theta1 = m.theta;
-    omega1 = m.omega;
-    alpha1 = m.alpha;
-  } else {
-    u1 = y[L.input_angle];
-    theta1 = omega_ref_ * t + u1;
-    omega1 = omega_ref_ + y[L.input_speed];
-  }
-  const double q = y[L.twist];
-  const double r = y[L.twist_rate];
-  const double theta2 = theta1 * inv_ratio_ - q;
-  const double omega2 = omega1 * inv_ratio_ - r;
+  const MeshMotion m = mesh_motion(t, y);
+  const double theta1 = m.theta1, omega1 = m.omega1, u1 = m.u1, q = m.q, r = m.r;
+  const double theta2 = m.theta2, omega2 = m.omega2, delta = m.delta, delta_rate = m.delta_rate;
+  const TeValue e = m.e;
+  double alpha1 = m.alpha1;
 
-  // Mesh: TE excitation, dead zone, spring, damping.
-  const TeValue e = te_.evaluate(theta1, theta2, omega1, omega2);
-  const double delta = q - e.value;
-  const double delta_rate = r - e.rate;
+  // Mesh: dead zone, spring, damping.
   const DeadZoneValue dz = dead_zone_.evaluate(delta);
   const double x = dz.x;
   const double x_rate = dz.slope * delta_rate;
@@ -274,13 +283,13 @@ void GearModel::evaluate(double t, const double* y, const double* d, double* dyd
         motor = model::evaluate(std::get<0>(drive_).torque, t);
         break;
       case 1: {
-        const auto& m = std::get<1>(drive_);
+        const auto& dc = std::get<1>(drive_);
         if (L.motor_current >= 0) {
           const double i = y[L.motor_current];
-          motor = m.torque(i);
-          if (dydt) dydt[L.motor_current] = m.current_rate(t, i, omega1);
+          motor = dc.torque(i);
+          if (dydt) dydt[L.motor_current] = dc.current_rate(t, i, omega1);
         } else {
-          motor = m.torque(m.algebraic_current(t, omega1));
+          motor = dc.torque(dc.algebraic_current(t, omega1));
         }
         break;
       }
@@ -427,8 +436,14 @@ void GearModel::error_scale(std::span<double> scale) const {
 void GearModel::witnesses(double t, std::span<const double> y, std::span<const double> d,
                           std::span<double> g) const {
   const StateLayout& L = layout_;
+  // Called after every step: only the form-5 witnesses need the full model.
   GearOutputs o;
-  evaluate(t, y.data(), d.data(), nullptr, &o);
+  if (L.witness_reversal >= 0) {
+    evaluate(t, y.data(), d.data(), nullptr, &o);
+  } else {
+    const MeshMotion m = mesh_motion(t, y.data());
+    o.twist = m.delta;
+  }
   if (L.witness_upper_flank >= 0) {
     g[static_cast<std::size_t>(L.witness_upper_flank)] = o.twist - dead_zone_.half_width();
     g[static_cast<std::size_t>(L.witness_lower_flank)] = o.twist + dead_zone_.half_width();

@@ -82,6 +82,13 @@ class GearModel final : public solver::OdeSystem {
   using Spring =
       std::variant<ElasticStiffness, HystereticBranchSpring, FadingMemorySpring, BoucWenSpring>;
 
+  struct MeshMotion {
+    double theta1 = 0, omega1 = 0, alpha1 = 0, u1 = 0, q = 0, r = 0, theta2 = 0, omega2 = 0;
+    TeValue e;
+    double delta = 0, delta_rate = 0;
+  };
+  // The shaft motions, the TE excitation and the twist: what the witnesses need.
+  MeshMotion mesh_motion(double t, const double* y) const noexcept;
   // One evaluation of the whole model; dydt and out may be null.
   void evaluate(double t, const double* y, const double* d, double* dydt, GearOutputs* out) const;
   double preload_twist(double torque) const;
