@@ -18,7 +18,7 @@ struct TrajectoryOptions {
   double t_end = 1.0;
   double initial_step = 0;  // [s] 0 = the integrator chooses
   double sample_rate = 0;   // [Hz] 0 = no sampling
-  double sample_t0 = 0;     // samples at exactly sample_t0 + k / sample_rate
+  double sample_t0 = 0;     // samples at exactly sample_t0 + k / sample_rate, k >= 0
   bool locate_events = true;
   double event_tolerance = 1e-12;  // [s] width of the bracket a located root lies in
   // Zeno guard: a crossing of the same witness closer than this to its previous event is not
