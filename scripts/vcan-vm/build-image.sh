@@ -20,7 +20,7 @@ die() {
 
 # Modules the VM needs; their dependencies are resolved from the modules themselves, so a kernel
 # that builds one of them in (modules.builtin) or adds a dependency still works.
-required_modules=(virtio_pci 9pnet_virtio 9p vcan can-raw)
+required_modules=(virtio_pci 9pnet_virtio 9p overlay vcan can-raw)
 # Loaded when present: other engineers' tests may use the broadcast manager, ISO-TP or the gateway.
 optional_modules=(can-bcm can-isotp can-gw)
 
@@ -97,7 +97,7 @@ modpaths=$(grep -E "^\./lib/modules/$kver/kernel/.*\.ko(\.xz|\.zst|\.gz)?$" <<<"
 # One pass over the (xz-compressed) package for the kernel and the directories the modules are
 # expected in; a dependency elsewhere costs one more pass in extract_module.
 members=("$vmlinuz" ${builtin:+"$builtin"})
-for dir in drivers/virtio net/9p fs/9p fs/netfs fs/fscache net/can drivers/net/can; do
+for dir in drivers/virtio net/9p fs/9p fs/netfs fs/fscache fs/overlayfs net/can drivers/net/can; do
   if grep -q "^\./lib/modules/$kver/kernel/$dir/" <<<"$listing"; then
     members+=("./lib/modules/$kver/kernel/$dir/*")
   fi
@@ -164,7 +164,7 @@ done
 
 # --- initramfs ------------------------------------------------------------------------------------
 root=$work/root
-mkdir -p "$root"/{bin,dev,proc,sys,etc,lib/modules,newroot,share}
+mkdir -p "$root"/{bin,dev,proc,sys,etc,lib/modules,newroot,share,lower,rw}
 cp "$busybox_bin" "$root/bin/busybox"
 cp "$here/init.sh" "$root/init"
 chmod 755 "$root/init" "$root/bin/busybox"

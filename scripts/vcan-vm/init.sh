@@ -1,7 +1,8 @@
 #!/bin/busybox sh
 # /init of the vcan test VM (runs as PID 1 from the initramfs that build-image.sh packs).
-# Loads the virtio/9p/CAN modules, mounts the host's root read-only (share "hostroot") with the
-# build directory writable on top (share "buildshare"), creates vcan0/vcan1 and runs the job
+# Loads the virtio/9p/overlay/CAN modules, mounts the host's root (share "hostroot", read-only,
+# made writable by a throw-away overlay) with the build directory (share "buildshare") writable
+# at its own path, creates vcan0/vcan1 and runs the job
 # script run-vcan-tests.sh left in BUILD/vcan-vm/run/ inside a chroot of the host root, so the
 # tests see the host's compilers, libraries, python3-can and can-utils at their usual paths.
 # Results go back through the writable share: console.log is only for humans.
@@ -31,26 +32,28 @@ done
 
 new=/newroot
 p9opts=trans=virtio,version=9p2000.L,msize=524288
-mount -t 9p -o "$p9opts,ro,cache=loose" hostroot $new || fail "cannot mount the host root (9p)"
+mount -t 9p -o "$p9opts,ro,cache=loose" hostroot /lower || fail "cannot mount the host root (9p)"
+# The whole host root becomes writable through an overlay whose upper layer is a tmpfs that
+# vanishes with the VM, so /tmp, /root, /var/tmp, /run and even the source tree can be written
+# without hiding anything (a checkout or build directory may live under /tmp or /root).
+mount -t tmpfs -o mode=0755,size=75% tmpfs /rw || fail "cannot mount the overlay's tmpfs"
+mkdir -p /rw/upper /rw/work
+mount -t overlay overlay -o lowerdir=/lower,upperdir=/rw/upper,workdir=/rw/work $new ||
+  fail "cannot mount the overlay on the host root"
 mount -t 9p -o "$p9opts" buildshare /share || fail "cannot mount the build directory (9p)"
 run=/share/vcan-vm/run
 [ -f $run/build-dir ] || fail "$run/build-dir missing: the host side did not prepare the run"
 build=$(cat $run/build-dir)
 [ -d "$new$build" ] || fail "build directory $build not visible in the host root"
-mount -o bind /share "$new$build" || fail "cannot bind the build directory to $build"
 
-# The host root is read-only: give the chroot its own writable scratch places and kernel views.
 mount -t proc proc $new/proc
 mount -t sysfs sys $new/sys
 mount -t devtmpfs dev $new/dev
 mkdir -p $new/dev/pts $new/dev/shm
 mount -t devpts devpts $new/dev/pts
 mount -t tmpfs -o mode=1777 tmpfs $new/dev/shm
-mount -t tmpfs -o mode=1777 tmpfs $new/tmp || fail "cannot mount a tmpfs on /tmp"
-for d in /run /var/tmp /root; do
-  [ -d "$new$d" ] && mount -t tmpfs -o mode=0755 tmpfs "$new$d"
-done
-chmod 1777 $new/var/tmp 2>/dev/null
+# Last, so that nothing is mounted over it: the build directory itself is the host's, writable.
+mount -o bind /share "$new$build" || fail "cannot bind the build directory to $build"
 
 in_root() {
   chroot $new /usr/bin/env -i PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin \
@@ -76,7 +79,7 @@ rm -f $run/status
 read -r up _ </proc/uptime
 say "job finished at ${up}s (guest clock), status $(cat $run/status 2>/dev/null || echo none)"
 
-umount $new/dev/pts $new/dev/shm $new/dev $new/proc $new/sys 2>/dev/null
 umount "$new$build" 2>/dev/null
+umount $new/dev/pts $new/dev/shm $new/dev $new/proc $new/sys 2>/dev/null
 umount /share 2>/dev/null
 halt
