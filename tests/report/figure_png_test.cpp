@@ -94,7 +94,8 @@ TEST(FigurePng, TwinPlotsRender) {
       .write_png(kOut / "spectrum.png");
   EXPECT_GT(ink_share(kOut / "spectrum.png", w, h), 0.02);
 
-  phase_portrait_figure(r.te, r.alpha2, "x", "v", "Synthetic phase portrait")
+  phase_portrait_figure({{"twist", "x", "v", r.te, r.alpha2}, {"output", "x", "v", r.alpha2, r.te}},
+                        "Synthetic phase portrait")
       .write_png(kOut / "phase.png", 800, 700);
   EXPECT_GT(ink_share(kOut / "phase.png", w, h), 0.005);
 

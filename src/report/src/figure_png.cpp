@@ -149,16 +149,26 @@ void draw_line_series(cairo_t* cr, const Series& s, const Scale& sx, const Scale
     cairo_stroke(cr);
     return;
   }
+  // Stroked in short pieces: cairo's cost for one long self-crossing path (a phase portrait)
+  // grows much faster than its length.
   bool pen_down = false;
+  int segments = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (!sx.usable(s.x[i]) || !sy.usable(s.y[i])) {
       pen_down = false;
       continue;
     }
+    const double x = sx(s.x[i]);
+    const double y = sy(s.y[i]);
     if (pen_down) {
-      cairo_line_to(cr, sx(s.x[i]), sy(s.y[i]));
+      cairo_line_to(cr, x, y);
+      if (++segments >= 256) {
+        cairo_stroke(cr);
+        cairo_move_to(cr, x, y);
+        segments = 0;
+      }
     } else {
-      cairo_move_to(cr, sx(s.x[i]), sy(s.y[i]));
+      cairo_move_to(cr, x, y);
       pen_down = true;
     }
   }

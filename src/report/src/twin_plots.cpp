@@ -119,16 +119,16 @@ Figure spectrum_figure(const std::vector<double>& f, const std::vector<double>& 
   return fig;
 }
 
-Figure phase_portrait_figure(const std::vector<double>& x, const std::vector<double>& v,
-                             const std::string& x_label, const std::string& v_label,
-                             const std::string& title) {
-  Figure fig(1, 1, title);
-  Axes& ax = fig.axes(0, 0);
-  ax.title = "Phase portrait";
-  ax.x_label = x_label;
-  ax.y_label = v_label;
-  ax.line(x, v);
-  ax.series.back().width = 0.6;
+Figure phase_portrait_figure(const std::vector<PortraitPanel>& panels, const std::string& title) {
+  Figure fig(1, std::max<int>(1, static_cast<int>(panels.size())), title);
+  for (std::size_t i = 0; i < panels.size(); ++i) {
+    Axes& ax = fig.axes(0, static_cast<int>(i));
+    ax.title = panels[i].title;
+    ax.x_label = panels[i].x_label;
+    ax.y_label = panels[i].v_label;
+    ax.line(panels[i].x, panels[i].v, {}, palette(static_cast<int>(i)));
+    ax.series.back().width = 0.6;
+  }
   return fig;
 }
 

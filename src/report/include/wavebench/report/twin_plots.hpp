@@ -27,9 +27,13 @@ Figure spectrum_figure(const std::vector<double>& frequency_hz,
                        const std::vector<double>& amplitude, const std::vector<NamedPeak>& peaks,
                        const std::string& amplitude_label, const std::string& title);
 
-Figure phase_portrait_figure(const std::vector<double>& x, const std::vector<double>& v,
-                             const std::string& x_label, const std::string& v_label,
-                             const std::string& title);
+struct PortraitPanel {
+  std::string title, x_label, v_label;
+  std::vector<double> x, v;
+};
+
+// Phase portraits side by side (e.g. twist against its rate, output angle against speed).
+Figure phase_portrait_figure(const std::vector<PortraitPanel>& panels, const std::string& title);
 
 Figure poincare_figure(const std::vector<double>& x, const std::vector<double>& v,
                        const std::string& x_label, const std::string& v_label,
