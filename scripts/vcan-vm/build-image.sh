@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Builds (once) the kernel and initramfs of the vcan test VM into a cache directory.
 # Usage: scripts/vcan-vm/build-image.sh CACHE_DIR
-# Leaves CACHE_DIR/vmlinuz and CACHE_DIR/initramfs.cpio.gz. A second run with the same inputs
+# Leaves CACHE_DIR/kernel (the vmlinux, or the bzImage) and CACHE_DIR/initramfs.cpio.gz. A second run with the same inputs
 # (kernel package, init script, module list, busybox) does nothing: the host kernel has no CAN
 # support, so the VM boots Debian's stock kernel, fetched as a .deb with `apt-get download`.
 # Environment: WAVEBENCH_VM_KERNEL_DEB=/path/to/linux-image-*.deb uses that package instead.
@@ -74,7 +74,7 @@ stamp_inputs=$(
     sha256sum <"$busybox_bin"
   } | sha256sum | cut -d' ' -f1
 )
-if [[ -f "$cache/vmlinuz" && -f "$cache/initramfs.cpio.gz" && -f "$cache/image.stamp" &&
+if [[ -f "$cache/kernel" && -f "$cache/initramfs.cpio.gz" && -f "$cache/image.stamp" &&
   "$(cat "$cache/image.stamp")" == "$stamp_inputs" ]]; then
   exit 0
 fi
@@ -162,6 +162,40 @@ for m in "${optional_modules[@]}"; do
   resolve "$m" || log "optional module $m not available in $kver; skipped"
 done
 
+# --- boot image -----------------------------------------------------------------------------------
+# Under TCG the bzImage's own decompressor costs 10-17 s per boot here. qemu boots the embedded
+# ELF vmlinux directly through its PVH entry point, so unpack it once when the kernel has one.
+has_pvh_entry() { # XEN_ELFNOTE_PHYS32_ENTRY (18)
+  readelf -n "$1" 2>/dev/null | grep -q 'Xen.*(0x00000012)'
+}
+extract_vmlinux() { # $1: bzImage, $2: output; false when no payload unpacks to a PVH-capable ELF
+  command -v readelf >/dev/null || return 1
+  local magic tool off
+  for magic in 'xz:\xfd7zXZ\x00' 'gzip:\x1f\x8b\x08' 'zstd:\x28\xb5\x2f\xfd'; do
+    tool=${magic%%:*}
+    command -v "$tool" >/dev/null || continue
+    for off in $(LC_ALL=C grep -obUaP "${magic#*:}" "$1" 2>/dev/null | cut -d: -f1 | head -n 4); do
+      case "$tool" in
+        xz) tail -c +$((off + 1)) "$1" | xz -dc --single-stream >"$2" 2>/dev/null || true ;;
+        gzip) tail -c +$((off + 1)) "$1" | gzip -dc >"$2" 2>/dev/null || true ;;
+        zstd) tail -c +$((off + 1)) "$1" | zstd -qdc >"$2" 2>/dev/null || true ;;
+      esac
+      if has_pvh_entry "$2"; then
+        return 0
+      fi
+    done
+  done
+  rm -f "$2"
+  return 1
+}
+boot_kernel=$work/$vmlinuz
+if extract_vmlinux "$work/$vmlinuz" "$work/vmlinux"; then
+  boot_kernel=$work/vmlinux
+  log "booting the unpacked vmlinux (PVH entry)"
+else
+  log "no PVH-capable vmlinux inside $(basename "$vmlinuz"); booting the bzImage"
+fi
+
 # --- initramfs ------------------------------------------------------------------------------------
 root=$work/root
 mkdir -p "$root"/{bin,dev,proc,sys,etc,lib/modules,newroot,share,lower,rw}
@@ -180,9 +214,10 @@ fi
 (cd "$root" && find . -print0 | LC_ALL=C sort -z | cpio --null -o -H newc --quiet | gzip -9) \
   >"$work/initramfs.cpio.gz"
 
-cp "$work/$vmlinuz" "$cache/vmlinuz.tmp"
+cp "$boot_kernel" "$cache/kernel.tmp"
 mv "$work/initramfs.cpio.gz" "$cache/initramfs.cpio.gz"
-mv "$cache/vmlinuz.tmp" "$cache/vmlinuz"
+mv "$cache/kernel.tmp" "$cache/kernel"
+rm -f "$cache/vmlinuz" # the name before the unpacked vmlinux
 echo "$kver" >"$cache/kernel.version"
 echo "$stamp_inputs" >"$cache/image.stamp"
 log "image ready: kernel $kver, modules: ${order[*]}"

@@ -75,7 +75,7 @@ fi
 qemu=(
   qemu-system-x86_64 -accel tcg -cpu "$cpu" -smp "$smp" -m "$memory"
   -nodefaults -display none -no-reboot -serial stdio
-  -kernel "$cache/vmlinuz" -initrd "$cache/initramfs.cpio.gz"
+  -kernel "$cache/kernel" -initrd "$cache/initramfs.cpio.gz"
   -append "console=ttyS0 quiet loglevel=3 panic=-1"
   -virtfs "local,path=/,mount_tag=hostroot,security_model=$security,readonly=on,multidevs=remap"
   -virtfs "local,path=${build//,/,,},mount_tag=buildshare,security_model=$security,multidevs=remap"
