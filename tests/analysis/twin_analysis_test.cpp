@@ -189,3 +189,36 @@ TEST(TwinAnalysis, FiniteDifferenceSensitivityAgreesWithTheLinearOne) {
   EXPECT_LT(s.monte_carlo.mean, s.monte_carlo.nominal);
   EXPECT_GT(s.monte_carlo.p95, s.monte_carlo.mean);
 }
+
+TEST(TwinAnalysis, StiffnessVariationUnderLoadIsAttributedAsAnEquivalentError) {
+  auto params = xb80_linear(true);
+  // 3 % stiffness variation twice per WG revolution and 25 N m drag: the torque ripple
+  // k_p * (T / k0) = 0.75 N m acts like a TE of 0.75 / k0 rad at 2 f_H = 89.33 Hz.
+  params.stiffness.law = wm::LinearPeriodicStiffness{1e6, {{3e4, 2, 0, 0.0}}};
+  params.load.output_drag_coulomb = 25;
+  params.load.drag_smoothing_speed = 1e-3;
+  // A small 90 Hz line: 2.7 bins away, the Hann skirt of a 20 arcsec line would bury this one.
+  params.te_terms[0].amplitude_rad = 0.5 * kArcsec;
+  const auto sim = run_options(4.2);
+  const auto result = wm::simulate(params, sim);
+  wa::AnalysisOptions options;
+  options.spectrum.signal = "te";
+  const auto a = wa::analyse_twin_run(params, sim, result, options);
+  const double f_h = kSpeed / (2 * std::numbers::pi);
+  const wa::AttributedPeak* ripple = nullptr;
+  for (const auto& p : a.peaks) {
+    if (std::abs(p.frequency_hz - 2 * f_h) < 0.05) ripple = &p;
+  }
+  std::string listing;
+  for (const auto& p : a.peaks) {
+    listing += std::to_string(p.frequency_hz) + " Hz " + std::to_string(p.amplitude) + " " +
+               p.label + "; ";
+  }
+  ASSERT_NE(ripple, nullptr) << listing << " mean torque " << a.linear->operating_torque_nm;
+  ASSERT_EQ(ripple->sources.size(), 1u);
+  EXPECT_EQ(ripple->sources[0].source, "stiffness variation (2,0)");
+  const double expected =
+      std::abs(wa::te_transfer(a.linear->coefficients, "te", 2 * f_h)) * 0.75 / 1e6;
+  EXPECT_NEAR(ripple->amplitude, expected, 0.05 * expected);
+  EXPECT_NEAR(ripple->predicted_amplitude, expected, 1e-3 * expected);
+}

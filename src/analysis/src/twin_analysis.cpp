@@ -52,6 +52,36 @@ const model::TeTerm* strobe_term(const model::GearParams& params, const Poincare
   return best;
 }
 
+// The angle-periodic stiffness variation excites the gear like a TE: at the operating twist x0
+// the torque ripple k_p x0 cos(psi) equals the stiffness K-bar times an equivalent error
+// e = (k_p x0 / K-bar) sin(psi + phi - pi/2) (the TE enters the twist with a minus sign).
+std::vector<model::TeTerm> stiffness_variation_terms(const model::StiffnessParams& stiffness,
+                                                     const LinearisedGear& gear) {
+  std::vector<model::TeTerm> terms;
+  const double x0 = gear.operating_twist_rad;
+  const double torque = gear.operating_torque_nm;
+  const double k = gear.coefficients.stiffness;
+  auto add = [&](const model::StiffnessHarmonic& h, double ripple_torque) {
+    if (ripple_torque == 0 || !(k > 0)) return;
+    model::TeTerm t;
+    t.source = "stiffness variation (" + std::to_string(static_cast<int>(h.order_input)) + "," +
+               std::to_string(static_cast<int>(h.order_output)) + ")";
+    t.family = model::TeFamily::kCustom;
+    t.order_input = h.order_input;
+    t.order_output = h.order_output;
+    t.amplitude_rad = std::abs(ripple_torque) / k;
+    t.phase_rad = h.phase_rad - 0.5 * std::numbers::pi + (ripple_torque < 0 ? std::numbers::pi : 0);
+    terms.push_back(t);
+  };
+  if (const auto* lin = std::get_if<model::LinearPeriodicStiffness>(&stiffness.law)) {
+    // x0 includes the backlash offset; the spring sees the filtered twist torque / k0.
+    const double x = lin->k0 > 0 ? torque / lin->k0 : x0;
+    for (const auto& h : lin->harmonics) add(h, h.amplitude * x);
+  }
+  for (const auto& h : stiffness.modulation) add(h, h.amplitude * torque);
+  return terms;
+}
+
 double drive_frequency_hz(const model::GearParams& params) {
   if (const auto* dc = std::get_if<model::DcMotorInput>(&params.input)) {
     if (dc->voltage.amplitude != 0) return dc->voltage.frequency_hz;
@@ -107,6 +137,10 @@ TwinAnalysis analyse_twin_run(const model::GearParams& params,
 
   AttributionInput attribution;
   attribution.terms = params.te_terms;
+  if (linear) {
+    const auto ripple = stiffness_variation_terms(params.stiffness, *linear);
+    attribution.terms.insert(attribution.terms.end(), ripple.begin(), ripple.end());
+  }
   attribution.geometry = params.geometry;
   attribution.mean_input_speed = out.mean_input_speed;
   attribution.sample_rate_hz = out.sample_rate_hz;
