@@ -6,7 +6,8 @@
 
 namespace wavebench::model {
 namespace {
-constexpr long kLongestPowerChain = 8;
+// Beyond this many multiplications a phasor of the full argument is cheaper.
+constexpr long kLongestPowerChain = 2;
 }  // namespace
 
 TeExcitation::TeExcitation(const std::vector<TeTerm>& terms) {
@@ -29,7 +30,11 @@ TeExcitation::TeExcitation(const std::vector<TeTerm>& terms) {
       }
     }
     if (!merged) integer_terms_.push_back({a, b, phasor});
-    if (b != 0) uses_output_angle_ = true;
+  }
+  for (const auto& t : integer_terms_) {
+    if (std::abs(t.order_input) + std::abs(t.order_output) > kLongestPowerChain) continue;
+    if (t.order_input != 0) uses_input_angle_ = true;
+    if (t.order_output != 0) uses_output_angle_ = true;
   }
 }
 
@@ -37,12 +42,11 @@ TeValue TeExcitation::evaluate(double theta1, double theta2, double omega1,
                                double omega2) const noexcept {
   TeValue v;
   if (!integer_terms_.empty()) {
-    const Phasor z1 = unit_phasor(theta1);
+    const Phasor z1 = uses_input_angle_ ? unit_phasor(theta1) : Phasor{};
     const Phasor z2 = uses_output_angle_ ? unit_phasor(theta2) : Phasor{};
     for (const IntegerTerm& t : integer_terms_) {
       Phasor p;
       if (std::abs(t.order_input) + std::abs(t.order_output) > kLongestPowerChain) {
-        // A long chain of dependent squarings costs more than one sincos of the full argument.
         p = unit_phasor(static_cast<double>(t.order_input) * theta1 +
                         static_cast<double>(t.order_output) * theta2);
       } else {

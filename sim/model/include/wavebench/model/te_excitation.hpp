@@ -33,6 +33,7 @@ class TeExcitation {
   };
   std::vector<IntegerTerm> integer_terms_;
   std::vector<Term> other_terms_;
+  bool uses_input_angle_ = false;  // some term is built from powers of e^(i theta1)
   bool uses_output_angle_ = false;
 };
 
