@@ -60,3 +60,35 @@ TEST(RegisterCodec, OutOfRangeIsRejected) {
 
 }  // namespace
 }  // namespace wavebench::modbus
+
+#include "wavebench/modbus/brake_status.hpp"
+
+namespace wavebench::modbus {
+namespace {
+
+TEST(BrakeStatus, DecodesConfiguredBitsAndNamesAlarms) {
+  BrakeRegisterMap map;
+  const auto s = decode_status(0b101110, map.status_bits);
+  EXPECT_FALSE(s.output_on);
+  EXPECT_TRUE(s.alarm);
+  EXPECT_TRUE(s.over_temperature);
+  EXPECT_TRUE(s.watchdog_tripped);
+  EXPECT_FALSE(s.coil_open);
+  EXPECT_TRUE(s.at_setpoint);
+  EXPECT_EQ(describe_alarms(s, 1, map),
+            "alarm 1: coil over-temperature; over-temperature; "
+            "watchdog tripped");
+  EXPECT_EQ(describe_alarms(decode_status(0, map.status_bits), 0, map), "no alarm");
+  EXPECT_EQ(describe_alarms(decode_status(0b10, map.status_bits), 77, map),
+            "alarm 77: unknown alarm code");
+  // A controller with other bit positions.
+  map.status_bits.output_on = 8;
+  map.status_bits.alarm = 15;
+  const auto t = decode_status(0x8100, map.status_bits);
+  EXPECT_TRUE(t.output_on);
+  EXPECT_TRUE(t.alarm);
+  EXPECT_FALSE(t.over_temperature);
+}
+
+}  // namespace
+}  // namespace wavebench::modbus
