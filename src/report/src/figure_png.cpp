@@ -72,8 +72,10 @@ Scale make_scale(const Axes& ax, bool along_x, double p0, double p1) {
     s.lo = std::pow(10.0, std::floor(std::log10(lo)));
     s.hi = std::pow(10.0, std::ceil(std::log10(hi)));
     if (s.hi <= s.lo) s.hi = s.lo * 10;
-  } else if (along_x) {
-    s.lo = lo;  // time and frequency axes span the data exactly
+  } else if (along_x && std::all_of(ax.series.begin(), ax.series.end(), [](const Series& d) {
+               return d.style == SeriesStyle::kLine;
+             })) {
+    s.lo = lo;  // time and frequency axes span the data exactly; scatter gets a margin
     s.hi = hi > lo ? hi : lo + 1;
   } else {
     const double pad = 0.05 * (hi - lo);

@@ -140,7 +140,7 @@ Figure poincare_figure(const std::vector<double>& x, const std::vector<double>& 
   ax.title = "Poincare section: " + motion_class + " (" + std::to_string(x.size()) + " points)";
   ax.x_label = x_label;
   ax.y_label = v_label;
-  ax.scatter(x, v, {}, palette(3), x.size() > 500 ? 1.2 : 2.5);
+  ax.scatter(x, v, {}, palette(3), x.size() > 3000 ? 1.5 : 2.5);
   return fig;
 }
 
