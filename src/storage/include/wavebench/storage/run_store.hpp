@@ -1,0 +1,91 @@
+#pragma once
+// Runs on disk: one folder per run under a root, and a SQLite index of all runs.
+//
+//   <root>/index.sqlite
+//   <root>/<run id>/config.yaml     the config text the run started with
+//   <root>/<run id>/samples.wbs     SampleLog, written as acquired
+//   <root>/<run id>/results.json    written atomically
+//   <root>/<run id>/status.json     written atomically at every status change
+//
+// Run ids are UTC timestamps with microseconds ("20261122T045843.123456Z"): they sort by
+// start time, and creating the folder claims the id, so two stores never share one.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+struct sqlite3;
+
+namespace wavebench::storage {
+
+enum class RunStatus { kRunning, kComplete, kAborted, kIncomplete };
+const char* run_status_name(RunStatus status);
+// Throws std::invalid_argument naming the value and the names expected.
+RunStatus parse_run_status(const std::string& name);
+
+struct RunRecord {
+  std::string id;
+  std::string started_at;   // ISO 8601 UTC
+  std::string finished_at;  // empty while running or when incomplete
+  std::string unit_serial;
+  std::string procedure;
+  RunStatus status = RunStatus::kRunning;
+  std::string reason;
+  std::optional<bool> pass;
+  std::string limits_json = "{}";
+  std::string software_version;
+  std::string config_hash;  // SHA-256 of the config text, hex
+};
+
+struct RunQuery {
+  std::optional<std::string> procedure;
+  std::optional<std::string> unit_serial;
+  std::optional<RunStatus> status;
+  int limit = 0;  // 0 = all; newest first
+};
+
+struct RunPaths {
+  std::filesystem::path dir, config, samples, results, status;
+};
+
+// Not copyable: owns the SQLite connection. One store per process; recover() assumes no other
+// process is writing runs under the same root.
+class RunStore {
+ public:
+  // Creates the root and the index if missing, then recover(). Throws std::runtime_error
+  // naming the path and SQLite's message.
+  RunStore(std::filesystem::path root, std::string software_version);
+  ~RunStore();
+  RunStore(const RunStore&) = delete;
+  RunStore& operator=(const RunStore&) = delete;
+
+  // Claims a new id, writes the config copy and status, indexes the run as running.
+  std::string create_run(const std::string& procedure, const std::string& unit_serial,
+                         const std::string& config_text, const std::string& limits_json = "{}");
+  void write_results(const std::string& id, const nlohmann::json& results);
+  // status is kComplete or kAborted; throws std::invalid_argument for an unknown id.
+  void finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
+                  std::optional<bool> pass = std::nullopt);
+  // Marks every run left `running` as `incomplete`; returns their ids.
+  std::vector<std::string> recover();
+
+  std::optional<RunRecord> find_run(const std::string& id) const;
+  std::vector<RunRecord> list_runs(const RunQuery& query = {}) const;
+  RunPaths paths(const std::string& id) const;
+  const std::filesystem::path& root() const { return root_; }
+
+ private:
+  void write_status_file(const RunRecord& run) const;
+  std::string claim_id();
+
+  std::filesystem::path root_;
+  std::string software_version_;
+  sqlite3* db_ = nullptr;
+  std::string last_id_;
+};
+
+nlohmann::json to_json(const RunRecord& run);
+
+}  // namespace wavebench::storage

@@ -1,0 +1,95 @@
+#pragma once
+// Append-only binary log of SyncSamples, one file per run, written as acquired.
+//
+// Layout (little-endian): a 64-byte header, then fixed-size 96-byte records. A record carries
+// its own checksum, so the reader keeps every complete record after a crash and ignores (and
+// reports) a torn last one. Version 1:
+//   header: magic "WBSAMPL1" | u32 version | u32 header_size | u32 record_size |
+//           u32 counter_first | u32 counter_last | u32 pad | i64 created_ns | 24 bytes zero |
+//           u32 FNV-1a of the bytes before it
+//   record: u64 index | u32 sync_counter | u32 flags | i64 receive_time_ns | 6 x f64 channels |
+//           u32 missed_before | 20 bytes zero | u32 FNV-1a of the bytes before it
+
+#include <chrono>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "wavebench/storage/sync_gap_counter.hpp"
+#include "wavebench/storage/sync_sample.hpp"
+
+namespace wavebench::storage {
+
+inline constexpr std::uint32_t kSampleLogVersion = 1;
+inline constexpr std::size_t kSampleLogHeaderSize = 64;
+inline constexpr std::size_t kSampleLogRecordSize = 96;
+
+struct SampleLogHeader {
+  std::uint32_t version = kSampleLogVersion;
+  SyncCounterRange counter_range;
+  std::int64_t created_ns = 0;  // CLOCK_REALTIME when the log was created
+};
+
+struct SampleLogWriterOptions {
+  SyncCounterRange counter_range;
+  std::size_t flush_every_records = 100;          // write(2) at least this often ...
+  std::chrono::milliseconds flush_interval{100};  // ... and at least this often
+  std::size_t checkpoint_every_records = 1000;    // fdatasync(2); 0 = only on checkpoint()
+};
+
+// Not copyable: owns the file descriptor. Samples go to the OS at every flush, so a killed
+// process loses at most what was buffered since the last flush; checkpoints also survive a
+// power loss.
+class SampleLogWriter {
+ public:
+  // Creates (truncates) `path`. Throws std::system_error naming the path.
+  SampleLogWriter(const std::filesystem::path& path, SampleLogWriterOptions options = {});
+  ~SampleLogWriter();
+  SampleLogWriter(const SampleLogWriter&) = delete;
+  SampleLogWriter& operator=(const SampleLogWriter&) = delete;
+
+  // Counts gaps from the SYNC counter, stamps index/missed_before/flags, buffers the record.
+  // Returns the sample as stored.
+  SyncSample append(SyncSample sample);
+  void flush();
+  void checkpoint();  // flush + fdatasync
+  void close();       // checkpoint and close; the destructor does it too
+
+  std::uint64_t records_appended() const { return next_index_; }
+  std::uint64_t records_flushed() const { return flushed_; }
+  const SyncGapTotals& gap_totals() const { return gaps_.totals(); }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  void write_all(const unsigned char* data, std::size_t size);
+
+  std::filesystem::path path_;
+  SampleLogWriterOptions options_;
+  SyncGapCounter gaps_;
+  int fd_ = -1;
+  std::vector<unsigned char> buffer_;
+  std::uint64_t next_index_ = 0;
+  std::uint64_t flushed_ = 0;
+  std::uint64_t synced_ = 0;
+  std::chrono::steady_clock::time_point last_flush_;
+};
+
+struct SampleLogContents {
+  SampleLogHeader header;
+  std::vector<SyncSample> samples;  // every complete, intact record, in order
+  std::size_t torn_tail_bytes = 0;  // bytes of an incomplete last record (ignored)
+  bool corrupt_record = false;      // a full-size record failed its checksum; reading stopped
+  std::uint64_t corrupt_at_index = 0;
+  SyncGapTotals gaps;  // recounted from the records read
+};
+
+// Throws std::runtime_error naming the path and what is wrong with the header.
+SampleLogContents read_sample_log(const std::filesystem::path& path);
+
+// Encoding, exposed for tests and tools that check the bytes.
+std::vector<unsigned char> encode_sample_log_header(const SampleLogHeader& header);
+std::vector<unsigned char> encode_sample_record(const SyncSample& sample);
+
+}  // namespace wavebench::storage

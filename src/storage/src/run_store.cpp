@@ -1,0 +1,321 @@
+#include "wavebench/storage/run_store.hpp"
+
+#include <sqlite3.h>
+#include <sys/stat.h>
+
+#include <cerrno>
+#include <chrono>
+#include <ctime>
+#include <fstream>
+#include <stdexcept>
+#include <system_error>
+
+#include "wavebench/storage/atomic_file.hpp"
+#include "wavebench/storage/sha256.hpp"
+
+namespace wavebench::storage {
+
+namespace {
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE IF NOT EXISTS runs (
+  id TEXT PRIMARY KEY,
+  started_at TEXT NOT NULL,
+  finished_at TEXT,
+  unit_serial TEXT NOT NULL,
+  procedure TEXT NOT NULL,
+  status TEXT NOT NULL CHECK (status IN ('running','complete','aborted','incomplete')),
+  reason TEXT NOT NULL DEFAULT '',
+  pass INTEGER,
+  limits_json TEXT NOT NULL DEFAULT '{}',
+  software_version TEXT NOT NULL,
+  config_hash TEXT NOT NULL
+);
+CREATE INDEX IF NOT EXISTS runs_by_unit ON runs(unit_serial, started_at);
+CREATE INDEX IF NOT EXISTS runs_by_status ON runs(status);
+)sql";
+
+// Prepared statement that finalizes itself; binds text by index.
+class Statement {
+ public:
+  Statement(sqlite3* db, const std::string& sql) : db_(db) {
+    if (sqlite3_prepare_v2(db, sql.c_str(), -1, &stmt_, nullptr) != SQLITE_OK) {
+      throw std::runtime_error(std::string("run index: cannot prepare '") + sql +
+                               "': " + sqlite3_errmsg(db));
+    }
+  }
+  ~Statement() { sqlite3_finalize(stmt_); }
+  Statement(const Statement&) = delete;
+  Statement& operator=(const Statement&) = delete;
+
+  void bind(int i, const std::string& text) {
+    sqlite3_bind_text(stmt_, i, text.c_str(), static_cast<int>(text.size()), SQLITE_TRANSIENT);
+  }
+  void bind(int i, std::optional<bool> value) {
+    if (value) {
+      sqlite3_bind_int(stmt_, i, *value ? 1 : 0);
+    } else {
+      sqlite3_bind_null(stmt_, i);
+    }
+  }
+  void bind_int(int i, int value) { sqlite3_bind_int(stmt_, i, value); }
+  bool step() {
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    throw std::runtime_error(std::string("run index: ") + sqlite3_errmsg(db_));
+  }
+  std::string text(int col) const {
+    const auto* p = sqlite3_column_text(stmt_, col);
+    return p ? reinterpret_cast<const char*>(p) : "";
+  }
+  std::optional<bool> optional_bool(int col) const {
+    if (sqlite3_column_type(stmt_, col) == SQLITE_NULL) return std::nullopt;
+    return sqlite3_column_int(stmt_, col) != 0;
+  }
+
+ private:
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+};
+
+void exec(sqlite3* db, const char* sql) {
+  char* message = nullptr;
+  if (sqlite3_exec(db, sql, nullptr, nullptr, &message) != SQLITE_OK) {
+    std::string text = message ? message : "unknown error";
+    sqlite3_free(message);
+    throw std::runtime_error("run index: " + text);
+  }
+}
+
+std::string format_utc(std::chrono::system_clock::time_point t, bool compact) {
+  const auto us = std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch());
+  const std::time_t seconds = static_cast<std::time_t>(us.count() / 1000000);
+  const long micros = static_cast<long>(us.count() % 1000000);
+  std::tm tm{};
+  gmtime_r(&seconds, &tm);
+  char buf[64];
+  const std::size_t n = compact ? std::strftime(buf, sizeof buf, "%Y%m%dT%H%M%S", &tm)
+                                : std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &tm);
+  char tail[16];
+  std::snprintf(tail, sizeof tail, ".%06ldZ", micros);
+  return std::string(buf, n) + tail;
+}
+
+constexpr const char* kColumns =
+    "id, started_at, finished_at, unit_serial, procedure, status, reason, pass, limits_json, "
+    "software_version, config_hash";
+
+RunRecord read_row(const Statement& s) {
+  RunRecord r;
+  r.id = s.text(0);
+  r.started_at = s.text(1);
+  r.finished_at = s.text(2);
+  r.unit_serial = s.text(3);
+  r.procedure = s.text(4);
+  r.status = parse_run_status(s.text(5));
+  r.reason = s.text(6);
+  r.pass = s.optional_bool(7);
+  r.limits_json = s.text(8);
+  r.software_version = s.text(9);
+  r.config_hash = s.text(10);
+  return r;
+}
+
+}  // namespace
+
+const char* run_status_name(RunStatus status) {
+  switch (status) {
+    case RunStatus::kRunning:
+      return "running";
+    case RunStatus::kComplete:
+      return "complete";
+    case RunStatus::kAborted:
+      return "aborted";
+    case RunStatus::kIncomplete:
+      return "incomplete";
+  }
+  return "?";
+}
+
+RunStatus parse_run_status(const std::string& name) {
+  for (auto s :
+       {RunStatus::kRunning, RunStatus::kComplete, RunStatus::kAborted, RunStatus::kIncomplete}) {
+    if (name == run_status_name(s)) return s;
+  }
+  throw std::invalid_argument("run status: '" + name +
+                              "'; expected running, complete, aborted or incomplete");
+}
+
+nlohmann::json to_json(const RunRecord& run) {
+  nlohmann::json j = {{"id", run.id},
+                      {"started_at", run.started_at},
+                      {"finished_at", run.finished_at},
+                      {"unit_serial", run.unit_serial},
+                      {"procedure", run.procedure},
+                      {"status", run_status_name(run.status)},
+                      {"reason", run.reason},
+                      {"limits", nlohmann::json::parse(run.limits_json, nullptr, false)},
+                      {"software_version", run.software_version},
+                      {"config_hash", run.config_hash}};
+  j["pass"] = run.pass ? nlohmann::json(*run.pass) : nlohmann::json(nullptr);
+  return j;
+}
+
+RunStore::RunStore(std::filesystem::path root, std::string software_version)
+    : root_(std::move(root)), software_version_(std::move(software_version)) {
+  std::filesystem::create_directories(root_);
+  const auto db_path = root_ / "index.sqlite";
+  if (sqlite3_open_v2(db_path.c_str(), &db_,
+                      SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
+                      nullptr) != SQLITE_OK) {
+    std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
+    sqlite3_close(db_);
+    db_ = nullptr;
+    throw std::runtime_error("run index: cannot open " + db_path.string() + ": " + message);
+  }
+  sqlite3_busy_timeout(db_, 5000);
+  exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;");
+  exec(db_, kSchema);
+  recover();
+}
+
+RunStore::~RunStore() {
+  sqlite3_close(db_);
+}
+
+RunPaths RunStore::paths(const std::string& id) const {
+  RunPaths p;
+  p.dir = root_ / id;
+  p.config = p.dir / "config.yaml";
+  p.samples = p.dir / "samples.wbs";
+  p.results = p.dir / "results.json";
+  p.status = p.dir / "status.json";
+  return p;
+}
+
+std::string RunStore::claim_id() {
+  auto t = std::chrono::system_clock::now();
+  for (int attempt = 0; attempt < 100000; ++attempt) {
+    std::string id = format_utc(t, true);
+    // Same-microsecond or clock-stepped-back ids move forward so ids stay sortable.
+    if (id <= last_id_) {
+      t += std::chrono::microseconds(1);
+      continue;
+    }
+    const auto dir = root_ / id;
+    if (::mkdir(dir.c_str(), 0755) == 0) {
+      last_id_ = id;
+      return id;
+    }
+    if (errno != EEXIST) {
+      throw std::system_error(errno, std::generic_category(), "run store: mkdir " + dir.string());
+    }
+    t += std::chrono::microseconds(1);
+  }
+  throw std::runtime_error("run store: no free run id under " + root_.string());
+}
+
+std::string RunStore::create_run(const std::string& procedure, const std::string& unit_serial,
+                                 const std::string& config_text, const std::string& limits_json) {
+  if (!nlohmann::json::accept(limits_json)) {
+    throw std::invalid_argument("run store: limits_json = '" + limits_json +
+                                "' is not JSON; expected an object");
+  }
+  RunRecord run;
+  run.id = claim_id();
+  run.started_at = format_utc(std::chrono::system_clock::now(), false);
+  run.unit_serial = unit_serial;
+  run.procedure = procedure;
+  run.status = RunStatus::kRunning;
+  run.limits_json = limits_json;
+  run.software_version = software_version_;
+  run.config_hash = sha256_hex(config_text);
+  const auto p = paths(run.id);
+  write_file_atomically(p.config, config_text);
+  write_status_file(run);
+
+  Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
+                       ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7)");
+  s.bind(1, run.id);
+  s.bind(2, run.started_at);
+  s.bind(3, run.unit_serial);
+  s.bind(4, run.procedure);
+  s.bind(5, run.limits_json);
+  s.bind(6, run.software_version);
+  s.bind(7, run.config_hash);
+  s.step();
+  return run.id;
+}
+
+void RunStore::write_results(const std::string& id, const nlohmann::json& results) {
+  if (!find_run(id)) throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
+  write_file_atomically(paths(id).results, results.dump(2) + "\n");
+}
+
+void RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
+                          std::optional<bool> pass) {
+  if (status != RunStatus::kComplete && status != RunStatus::kAborted) {
+    throw std::invalid_argument(std::string("run store: finish status '") +
+                                run_status_name(status) + "'; expected complete or aborted");
+  }
+  Statement s(
+      db_, "UPDATE runs SET status = ?2, reason = ?3, pass = ?4, finished_at = ?5 WHERE id = ?1");
+  s.bind(1, id);
+  s.bind(2, std::string(run_status_name(status)));
+  s.bind(3, reason);
+  s.bind(4, pass);
+  s.bind(5, format_utc(std::chrono::system_clock::now(), false));
+  s.step();
+  if (sqlite3_changes(db_) != 1) {
+    throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
+  }
+  write_status_file(*find_run(id));
+}
+
+std::vector<std::string> RunStore::recover() {
+  RunQuery q;
+  q.status = RunStatus::kRunning;
+  std::vector<std::string> ids;
+  for (const auto& run : list_runs(q)) {
+    Statement s(db_,
+                "UPDATE runs SET status = 'incomplete', reason = ?2 WHERE id = ?1 AND "
+                "status = 'running'");
+    s.bind(1, run.id);
+    s.bind(2, std::string("the process ended while the run was running"));
+    s.step();
+    if (auto updated = find_run(run.id); updated && std::filesystem::exists(paths(run.id).dir)) {
+      write_status_file(*updated);
+    }
+    ids.push_back(run.id);
+  }
+  return ids;
+}
+
+std::optional<RunRecord> RunStore::find_run(const std::string& id) const {
+  Statement s(db_, std::string("SELECT ") + kColumns + " FROM runs WHERE id = ?1");
+  s.bind(1, id);
+  if (!s.step()) return std::nullopt;
+  return read_row(s);
+}
+
+std::vector<RunRecord> RunStore::list_runs(const RunQuery& query) const {
+  std::string sql = std::string("SELECT ") + kColumns +
+                    " FROM runs WHERE (?1 IS NULL OR procedure = ?1) AND "
+                    "(?2 IS NULL OR unit_serial = ?2) AND (?3 IS NULL OR status = ?3) "
+                    "ORDER BY id DESC";
+  if (query.limit > 0) sql += " LIMIT " + std::to_string(query.limit);
+  Statement s(db_, sql);
+  if (query.procedure) s.bind(1, *query.procedure);
+  if (query.unit_serial) s.bind(2, *query.unit_serial);
+  if (query.status) s.bind(3, std::string(run_status_name(*query.status)));
+  std::vector<RunRecord> out;
+  while (s.step()) out.push_back(read_row(s));
+  return out;
+}
+
+void RunStore::write_status_file(const RunRecord& run) const {
+  write_file_atomically(paths(run.id).status, to_json(run).dump(2) + "\n");
+}
+
+}  // namespace wavebench::storage
