@@ -171,8 +171,20 @@ void write_plots(const fs::path& dir, const config::TwinCase& twin,
       }
       return b;
     };
+    // Only the few largest jumps get a label; small relative jumps at low amplitude would
+    // bury the plot in text.
+    auto ranked = a.sweep->jumps;
+    std::sort(ranked.begin(), ranked.end(), [](const auto& x, const auto& y) {
+      return std::abs(x.to_amplitude - x.from_amplitude) >
+             std::abs(y.to_amplitude - y.from_amplitude);
+    });
     std::vector<double> jumps;
-    for (const auto& j : a.sweep->jumps) jumps.push_back(j.to_speed * kRpmPerRadS);
+    for (const auto& j : ranked) {
+      const double rpm = j.to_speed * kRpmPerRadS;
+      if (jumps.size() < 4 && std::find(jumps.begin(), jumps.end(), rpm) == jumps.end()) {
+        jumps.push_back(rpm);
+      }
+    }
     report::bifurcation_figure(
         {branch(a.sweep->up, "sweep up"), branch(a.sweep->down, "sweep down")},
         "twist at the section [arcsec]",

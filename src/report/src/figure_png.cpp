@@ -77,6 +77,10 @@ Scale make_scale(const Axes& ax, bool along_x, double p0, double p1) {
              })) {
     s.lo = lo;  // time and frequency axes span the data exactly; scatter gets a margin
     s.hi = hi > lo ? hi : lo + 1;
+  } else if (along_x) {
+    const double pad = hi > lo ? 0.03 * (hi - lo) : 1.0;
+    s.lo = lo - pad;
+    s.hi = hi + pad;
   } else {
     const double pad = 0.05 * (hi - lo);
     const AxisRange r = nice_range(lo - pad, hi + pad);
