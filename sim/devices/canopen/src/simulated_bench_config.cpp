@@ -1,0 +1,181 @@
+#include "wavebench/simdevices/simulated_bench_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+namespace wavebench::simdevices {
+namespace {
+
+std::string describe(const YAML::Node& node) {
+  if (node.IsScalar()) return "'" + node.Scalar() + "'";
+  return node.IsMap() ? "a map" : node.IsSequence() ? "a list" : "nothing";
+}
+
+[[noreturn]] void bad(const std::string& key, const YAML::Node& node, const std::string& expected) {
+  throw std::invalid_argument("simbench config: " + key + " = " + describe(node) + " (expected " +
+                              expected + ")");
+}
+
+template <typename T>
+void read_integer(const YAML::Node& parent, const std::string& section, const char* key, T& out,
+                  long long lo, long long hi) {
+  const YAML::Node n = parent[key];
+  if (!n) return;
+  const std::string name = section + "." + key;
+  long long v = 0;
+  try {
+    v = n.as<long long>();
+  } catch (const YAML::Exception&) {
+    bad(name, n, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  }
+  if (v < lo || v > hi)
+    bad(name, n, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
+  out = static_cast<T>(v);
+}
+
+void read_double(const YAML::Node& parent, const std::string& section, const char* key, double& out,
+                 double lo, double hi = std::numeric_limits<double>::max()) {
+  const YAML::Node n = parent[key];
+  if (!n) return;
+  const std::string name = section + "." + key;
+  double v = 0;
+  try {
+    v = n.as<double>();
+  } catch (const YAML::Exception&) {
+    bad(name, n, "a number >= " + std::to_string(lo));
+  }
+  if (!(v >= lo && v <= hi))
+    bad(name, n, "a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  out = v;
+}
+
+void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
+  const std::string s = "simbench.drive";
+  read_integer(n, s, "node_id", d.node_id, 1, 127);
+  read_integer(n, s, "counts_per_revolution", d.counts_per_revolution, 4, 1LL << 30);
+  read_double(n, s, "rated_torque_nm", d.rated_torque_nm, 1e-3);
+  read_integer(n, s, "max_torque_permille", d.max_torque_permille, 1, 65535);
+  read_integer(n, s, "max_motor_speed_rpm", d.max_motor_speed_rpm, 1, 100000);
+  read_double(n, s, "position_gain", d.position_gain, 0);
+  read_double(n, s, "velocity_gain", d.velocity_gain, 0);
+  read_double(n, s, "velocity_integral_time_s", d.velocity_integral_time, 0);
+  double period_us = d.control_period * 1e6;
+  read_double(n, s, "control_period_us", period_us, 10, 10000);
+  d.control_period = period_us * 1e-6;
+  read_integer(n, s, "quick_stop_option", d.quick_stop_option, 0, 8);
+  read_integer(n, s, "following_error_window", d.following_error_window, 0, 0xFFFFFFFFLL);
+  read_integer(n, s, "following_error_timeout_ms", d.following_error_timeout_ms, 0, 65535);
+  read_integer(n, s, "serial_number", d.identity.serial_number, 0, 0xFFFFFFFFLL);
+}
+
+void read_encoder(const YAML::Node& n, EncoderConfig& e) {
+  const std::string s = "simbench.encoder";
+  read_integer(n, s, "node_id", e.node_id, 1, 127);
+  read_integer(n, s, "resolution", e.single_turn_resolution, 2, 1LL << 31);
+  read_integer(n, s, "revolutions", e.revolutions, 1, 65535);
+  double arcsec = e.noise_rad * 180 * 3600 / std::numbers::pi;
+  read_double(n, s, "noise_arcsec", arcsec, 0);
+  e.noise_rad = arcsec * std::numbers::pi / (180 * 3600);
+  read_integer(n, s, "seed", e.seed, 0, std::numeric_limits<long long>::max());
+  read_integer(n, s, "serial_number", e.identity.serial_number, 0, 0xFFFFFFFFLL);
+}
+
+void read_torque_sensor(const YAML::Node& n, TorqueSensorConfig& t) {
+  const std::string s = "simbench.torque_sensor";
+  read_integer(n, s, "node_id", t.node_id, 1, 127);
+  if (const YAML::Node o = n["object"]) {
+    // "0x6130:1" or "0x6130" (sub-index 0)
+    const std::string text = o.IsScalar() ? o.Scalar() : "";
+    try {
+      std::size_t used = 0;
+      const unsigned long index = std::stoul(text, &used, 0);
+      unsigned long sub = 0;
+      if (used < text.size()) {
+        if (text[used] != ':') throw std::invalid_argument("separator");
+        std::size_t used_sub = 0;
+        sub = std::stoul(text.substr(used + 1), &used_sub, 0);
+        if (used + 1 + used_sub != text.size()) throw std::invalid_argument("trailing");
+      }
+      if (index < 0x2000 || index > 0xFFFF || sub > 0xFF) throw std::out_of_range("range");
+      t.index = static_cast<std::uint16_t>(index);
+      t.sub = static_cast<std::uint8_t>(sub);
+    } catch (const std::logic_error&) {
+      bad(s + ".object", o, "INDEX[:SUB] like \"0x6130:1\" with 0x2000 <= INDEX <= 0xFFFF");
+    }
+  }
+  if (const YAML::Node ty = n["type"]) {
+    try {
+      t.type = parse_process_value_type(ty.IsScalar() ? ty.Scalar() : "");
+    } catch (const std::invalid_argument&) {
+      bad(s + ".type", ty, "i16, i32 or f32");
+    }
+  }
+  read_double(n, s, "scale", t.scale_nm_per_unit, 1e-12);
+  read_double(n, s, "noise_nm", t.noise_nm, 0);
+  read_double(n, s, "offset_nm", t.offset_nm, -std::numeric_limits<double>::max());
+  read_integer(n, s, "seed", t.seed, 0, std::numeric_limits<long long>::max());
+}
+
+}  // namespace
+
+DataType parse_process_value_type(const std::string& text) {
+  if (text == "i16" || text == "int16") return DataType::kInteger16;
+  if (text == "i32" || text == "int32") return DataType::kInteger32;
+  if (text == "f32" || text == "real32") return DataType::kReal32;
+  throw std::invalid_argument("process value type '" + text + "' (expected i16, i32 or f32)");
+}
+
+SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
+                                                  SimulatedBenchConfig base) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(std::string("simbench config: not valid YAML: ") + e.what());
+  }
+  const YAML::Node sb = root["simbench"];
+  if (!sb) return base;
+  if (!sb.IsMap()) bad("simbench", sb, "a map");
+  if (const YAML::Node c = sb["clock"]) {
+    const std::string v = c.IsScalar() ? c.Scalar() : "";
+    if (v == "realtime") {
+      base.clock = BenchClock::kRealTime;
+    } else if (v == "sync") {
+      base.clock = BenchClock::kSyncDriven;
+    } else if (v == "manual") {
+      base.clock = BenchClock::kManual;
+    } else {
+      bad("simbench.clock", c, "realtime, sync or manual");
+    }
+  }
+  double sync_us = base.sync_period * 1e6;
+  read_double(sb, "simbench", "sync_period_us", sync_us, 10, 1e6);
+  base.sync_period = sync_us * 1e-6;
+  read_double(sb, "simbench", "brake_torque_nm", base.brake_torque, 0);
+  if (const YAML::Node d = sb["drive"]) read_drive(d, base.drive);
+  if (const YAML::Node e = sb["encoder"]) read_encoder(e, base.encoder);
+  if (const YAML::Node t = sb["torque_sensor"]) read_torque_sensor(t, base.torque_sensor);
+  const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
+  if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
+    throw std::invalid_argument("simbench config: node ids " + std::to_string(ids[0]) + ", " +
+                                std::to_string(ids[1]) + ", " + std::to_string(ids[2]) +
+                                " (expected three different node ids)");
+  }
+  return base;
+}
+
+SimulatedBenchConfig load_simulated_bench_config(const std::filesystem::path& path,
+                                                 SimulatedBenchConfig base) {
+  std::ifstream in(path);
+  if (!in) throw std::invalid_argument("simbench config: cannot read '" + path.string() + "'");
+  std::ostringstream text;
+  text << in.rdbuf();
+  return parse_simulated_bench_config(text.str(), std::move(base));
+}
+
+}  // namespace wavebench::simdevices

@@ -1,0 +1,60 @@
+// The simbench YAML section: values land in the device configs; bad values name key and value.
+#include "wavebench/simdevices/simulated_bench_config.hpp"
+
+#include <gtest/gtest.h>
+
+namespace wavebench::simdevices {
+namespace {
+
+TEST(SimulatedBenchConfig, ReadsNodeIdsAndTorqueObject) {
+  const auto c = parse_simulated_bench_config(R"(
+simbench:
+  clock: sync
+  sync_period_us: 500
+  drive: {node_id: 2, counts_per_revolution: 65536}
+  encoder: {node_id: 5, resolution: 524288, revolutions: 4096, noise_arcsec: 0}
+  torque_sensor: {node_id: 6, object: "0x7130:1", type: i16, scale: 0.01}
+)");
+  EXPECT_EQ(c.clock, BenchClock::kSyncDriven);
+  EXPECT_DOUBLE_EQ(c.sync_period, 500e-6);
+  EXPECT_EQ(c.drive.node_id, 2);
+  EXPECT_EQ(c.drive.counts_per_revolution, 65536u);
+  EXPECT_EQ(c.encoder.node_id, 5);
+  EXPECT_EQ(c.encoder.single_turn_resolution, 524288u);
+  EXPECT_EQ(c.encoder.revolutions, 4096);
+  EXPECT_EQ(c.encoder.noise_rad, 0.0);
+  EXPECT_EQ(c.torque_sensor.node_id, 6);
+  EXPECT_EQ(c.torque_sensor.index, 0x7130);
+  EXPECT_EQ(c.torque_sensor.sub, 1);
+  EXPECT_EQ(c.torque_sensor.type, DataType::kInteger16);
+  EXPECT_DOUBLE_EQ(c.torque_sensor.scale_nm_per_unit, 0.01);
+}
+
+TEST(SimulatedBenchConfig, DefaultsAreNodesOneThreeFour) {
+  const auto c = parse_simulated_bench_config("other: 1\n");
+  EXPECT_EQ(c.drive.node_id, 1);
+  EXPECT_EQ(c.encoder.node_id, 3);
+  EXPECT_EQ(c.torque_sensor.node_id, 4);
+}
+
+void expect_message(const std::string& yaml, const std::string& fragment) {
+  try {
+    parse_simulated_bench_config(yaml);
+    FAIL() << "accepted: " << yaml;
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find(fragment), std::string::npos) << e.what();
+  }
+}
+
+TEST(SimulatedBenchConfig, BadValuesNameKeyValueAndExpectation) {
+  expect_message("simbench: {drive: {node_id: 200}}", "simbench.drive.node_id = '200'");
+  expect_message("simbench: {torque_sensor: {type: u8}}",
+                 "simbench.torque_sensor.type = 'u8' (expected i16, i32 or f32)");
+  expect_message("simbench: {torque_sensor: {object: \"0x1000:1\"}}",
+                 "simbench.torque_sensor.object");
+  expect_message("simbench: {clock: fast}", "simbench.clock = 'fast'");
+  expect_message("simbench: {encoder: {node_id: 1}}", "three different node ids");
+}
+
+}  // namespace
+}  // namespace wavebench::simdevices
