@@ -291,6 +291,7 @@ int run_sim(const SimArgs& args) {
     twin.solver.progress = [&progress](double f) { progress.update(f); };
     const model::SimulationResult result = model::simulate(twin.gear, twin.solver);
     progress.finish();
+    twin.solver.progress = nullptr;  // a sweep in the analysis simulates again, silently
     if (!args.quiet) std::cerr << "analysing ...\n";
     const analysis::TwinAnalysis a =
         analysis::analyse_twin_run(twin.gear, twin.solver, result, twin.analysis);
