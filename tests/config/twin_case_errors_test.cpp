@@ -132,6 +132,19 @@ TEST(TwinCaseErrors, UnknownErrorSourceName) {
   expect_error(yaml, "te.error_sources.sources[1].name", "dX_9");
 }
 
+TEST(TwinCaseErrors, ToleranceWithoutUnitIsNotTakenAsMetres) {
+  const std::string yaml = kValid + R"(te:
+  error_sources:
+    pitch_diameter: "80 mm"
+    pressure_angle: "20 deg"
+    tooth_pairs_in_contact: 6
+    sources:
+      - {name: dF_i1, tolerance: 12}
+)";
+  const auto e = expect_error(yaml, "te.error_sources.sources[0].tolerance", "12");
+  EXPECT_NE(e.expected().find("um"), std::string::npos);
+}
+
 TEST(TwinCaseErrors, MissingFileIsAConfigError) {
   EXPECT_THROW(load_twin_case("/nonexistent/case.yaml"), ConfigError);
 }

@@ -91,6 +91,12 @@ model::TeTerm parse_term(YamlSection& s, const model::GearGeometry& geometry) {
 void parse_error_sources(YamlSection& s, model::GearParams& gear) {
   model::ErrorSourceSet set;
   set.pitch_diameter_m = s.positive_quantity("pitch_diameter", Dimension::kLength);
+  // Seed 001 writes d_w in mm and tolerances in um; a bare number is SI here as everywhere,
+  // so a seed value typed without its unit would be metres. Refuse it rather than guess.
+  if (set.pitch_diameter_m > 5.0) {
+    s.fail("pitch_diameter", s.value_text("pitch_diameter"),
+           "a diameter with its unit, e.g. \"80 mm\" (a bare number is metres)");
+  }
   set.pressure_angle_rad = s.quantity("pressure_angle", Dimension::kAngle);
   if (!(set.pressure_angle_rad >= 0 && set.pressure_angle_rad < 1.2)) {
     s.fail("pressure_angle", s.value_text("pressure_angle"), "an angle in [0, 70) deg");
@@ -104,6 +110,10 @@ void parse_error_sources(YamlSection& s, model::GearParams& gear) {
     e.name = src.text("name");
     e.tolerance_m = src.non_negative_quantity_or("tolerance", Dimension::kLength, -1.0);
     if (e.tolerance_m < 0) src.fail("tolerance", "", "a length such as \"12 um\" (required)");
+    if (e.tolerance_m > 1e-3) {
+      src.fail("tolerance", src.value_text("tolerance"),
+               "a tolerance with its unit, e.g. \"12 um\" (a bare number is metres)");
+    }
     e.phase_rad = src.quantity_or("phase", Dimension::kAngle, 0.0);
     src.finish();
     model::ErrorSourceSet one = set;
