@@ -142,6 +142,7 @@ void dump(const CanOptions& o) {
   auto frames = bus.on_frame([&](const can::Frame& f) {
     std::cout << timestamp_text(f.timestamp) << " " << o.iface << "  " << co::describe_frame(f)
               << "\n";
+    std::cout.flush();  // a dump is watched live or piped into grep: no block buffering
     if (o.count > 0 && ++seen >= o.count) io.stop();
   });
   auto events = bus.on_event([&](const can::BusEvent& e) {
