@@ -155,3 +155,28 @@ TEST(MotionClassifier, TooFewPointsIsUndetermined) {
   EXPECT_EQ(wa::classify_motion(section, {}, {}).motion, wa::MotionClass::kUndetermined);
   EXPECT_STREQ(wa::motion_class_name(wa::MotionClass::kQuasiPeriodic), "quasi-periodic");
 }
+
+TEST(MotionClassifier, SlowlyDriftingSectionIsQuasiPeriodicNotPeriodOne) {
+  // Two tones 0.3 % apart: each strobe moves the point a little along a closed curve, so
+  // consecutive points share a cluster although the motion never repeats.
+  const double w = 1.0, w2 = 1.003;
+  const auto tr = sample(
+      [&](double t) { return std::sin(w * t) + 0.5 * std::sin(w2 * t); },
+      [&](double t) { return w * std::cos(w * t) + 0.5 * w2 * std::cos(w2 * t); }, w, 1000, 64);
+  const auto m = classify(tr);
+  EXPECT_EQ(m.motion, wa::MotionClass::kQuasiPeriodic) << m.summary;
+}
+
+TEST(MotionClassifier, CommensurateLinesRepeatingAfterManyStrobesAreQuasiPeriodic) {
+  // 90 Hz and 89.333 Hz (ratio 135/134) strobed at 90 Hz: the sequence repeats after 135.
+  const double f1 = 90, f2 = 90.0 * 134 / 135;
+  const auto tr = sample(
+      [&](double t) { return std::sin(2 * kPi * f1 * t) + 0.2 * std::sin(2 * kPi * f2 * t); },
+      [&](double t) {
+        return 2 * kPi * (f1 * std::cos(2 * kPi * f1 * t) + 0.2 * f2 * std::cos(2 * kPi * f2 * t));
+      },
+      2 * kPi * f1, 400, 200);
+  const auto m = classify(tr);
+  EXPECT_EQ(m.motion, wa::MotionClass::kQuasiPeriodic) << m.summary;
+  EXPECT_EQ(m.evidence.period, 135);
+}

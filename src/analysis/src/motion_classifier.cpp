@@ -23,6 +23,24 @@ int repeat_period(const std::vector<int>& labels, int max_period) {
   return 0;
 }
 
+// Smallest p with |x_i - x_{i+p}| <= tolerance for nearly all i: a long period (commensurate
+// lines) that the cluster count alone would take for a quasi-periodic or chaotic set.
+// Returns closer than this (of the attractor size) are exact repeats, not slow drift.
+constexpr double kExactRepeat = 1e-4;
+
+int repeat_distance_period(std::span<const PhasePoint> p, double tolerance) {
+  const int n = static_cast<int>(p.size());
+  for (int k = 1; 2 * k <= n; ++k) {
+    int same = 0;
+    for (int i = 0; i + k < n; ++i) {
+      same +=
+          distance(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(i + k)]) <= tolerance;
+    }
+    if (same >= static_cast<int>(0.95 * (n - k))) return k;
+  }
+  return 0;
+}
+
 }  // namespace
 
 const char* motion_class_name(MotionClass motion) {
@@ -92,6 +110,7 @@ double largest_lyapunov(std::span<const PhasePoint> p) {
   // Rosenstein: follow each point and its nearest neighbour for a few strobe periods; the mean
   // log separation grows with the largest exponent (per period).
   constexpr int kHorizon = 4;
+  constexpr double kNoiseFloor = 1e-7;  // of the attractor size
   const int n = static_cast<int>(p.size());
   if (n < 4 * kHorizon) return 0;
   std::vector<double> mean_log(kHorizon + 1, 0.0);
@@ -102,7 +121,9 @@ double largest_lyapunov(std::span<const PhasePoint> p) {
     for (int j = 0; j + kHorizon < n; ++j) {
       if (j == i) continue;
       const double dij = distance(p[static_cast<std::size_t>(i)], p[static_cast<std::size_t>(j)]);
-      if (dij > 0 && dij < best_d) {
+      // Closer than the integration noise: the orbit repeats; such a pair measures the
+      // solver's round-off, not the dynamics.
+      if (dij > kNoiseFloor && dij < best_d) {
         best_d = dij;
         best = j;
       }
@@ -184,7 +205,10 @@ MotionClassification classify_motion(std::span<const PhasePoint> section,
 
   std::ostringstream why;
   if (ev.clusters <= options.max_clusters) {
+    // A period-n orbit visits exactly n clusters, one per strobe; points drifting slowly along
+    // a curve also repeat their label from one strobe to the next, but over many clusters.
     ev.period = repeat_period(labels, options.max_clusters);
+    if (ev.period != ev.clusters) ev.period = 0;
   }
   if (ev.period == 1 || ev.clusters == 1) {
     ev.period = 1;
@@ -195,6 +219,14 @@ MotionClassification classify_motion(std::span<const PhasePoint> section,
     result.motion = MotionClass::kPeriodN;
     why << "period-" << ev.period << ": " << ev.clusters << " clusters visited in a cycle of "
         << ev.period << " strobe periods (spread " << ev.spread << ")";
+  } else if (const int repeat = repeat_distance_period(p, kExactRepeat); repeat > 0) {
+    // More clusters than a period-n orbit may have, but the sequence repeats exactly: lines at
+    // commensurate frequencies (a closed curve visited in a fixed order).
+    ev.period = repeat;
+    result.motion = MotionClass::kQuasiPeriodic;
+    why << "quasi-periodic: " << ev.clusters << " clusters on a closed curve (correlation "
+        << "dimension " << ev.correlation_dimension << "), the sequence repeats after " << repeat
+        << " strobe periods (commensurate lines)";
   } else {
     ev.lyapunov_per_period = largest_lyapunov(p);
     const bool chaotic = ev.lyapunov_per_period > options.chaotic_lyapunov ||

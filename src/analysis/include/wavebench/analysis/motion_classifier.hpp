@@ -12,8 +12,9 @@ namespace wavebench::analysis {
 enum class MotionClass { kPeriod1, kPeriodN, kQuasiPeriodic, kChaotic, kUndetermined };
 
 struct MotionEvidence {
-  int clusters = 0;                  // clusters of section points within the tolerance
-  int period = 0;                    // n for period-n (0 if none)
+  int clusters = 0;  // clusters of section points within the tolerance
+  int period = 0;    // n for period-n; for a quasi-periodic set whose strobe sequence repeats
+                     // (commensurate lines), the repeat length
   double cluster_tolerance = 0;      // relative to the attractor size
   double spread = 0;                 // largest cluster radius / attractor size
   double correlation_dimension = 0;  // Grassberger-Procaccia D2 of the section points
@@ -30,7 +31,7 @@ struct MotionClassification {
 struct MotionClassifierOptions {
   int max_clusters = 16;
   double cluster_tolerance = 0.01;  // of the attractor size
-  double chaotic_lyapunov = 0.05;   // per strobe period, above = chaotic
+  double chaotic_lyapunov = 0.1;    // per strobe period, above = chaotic
   double chaotic_dimension = 1.35;  // D2 above = chaotic even if neighbours diverge slowly
 };
 
