@@ -1,0 +1,97 @@
+#pragma once
+// Dynamic TE (bench.md §4): constant input speed, at least one whole output revolution sampled
+// on SYNC. TE against time and output angle; mean, peak-to-peak, RMS; the spectrum in Hz (the
+// record resampled on its real timestamps) and in orders of the output and of the wave
+// generator (resampled on the measured output angle); peaks named; the twin's components above
+// Nyquist listed as aliased with the frequency they fold to.
+
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/procedures/gear_sense.hpp"
+
+namespace wavebench::procedures {
+
+struct GearTeeth {
+  int z_flex = 0;       // z_F
+  int z_circ = 0;       // z_C
+  int wave_number = 2;  // U
+};
+
+// A component the twin predicts: e = A sin(a·θ1 + b·θ2 + φ); frequency (a + b/N)·f_H.
+struct PredictedComponent {
+  std::string name;
+  double order_input = 0;   // a
+  double order_output = 0;  // b
+  double amplitude_rad = 0;
+};
+
+struct DynamicTeOptions {
+  analysis::Window window = analysis::Window::kHann;
+  int max_peaks = 12;
+  double min_relative_amplitude = 1e-3;
+  int harmonics = 3;            // named harmonics of output 1/rev and of the mesh
+  double name_tolerance = 0.0;  // output orders; 0 = 1.5 bins of the order spectrum
+};
+
+struct NamedPeak {
+  std::string name;         // "output 1/rev", "mesh x2", a twin component's name, or "unnamed"
+  double order_output = 0;  // cycles per output revolution
+  double order_input = 0;   // cycles per wave-generator revolution
+  double frequency_hz = 0;  // at the run's mean speed
+  double amplitude_arcsec = 0;
+};
+
+struct AliasedComponent {
+  std::string name;
+  double frequency_hz = 0;  // (a + b/N)·f_H
+  double folded_hz = 0;     // where it appears in the sampled record
+  double amplitude_arcsec = 0;
+};
+
+struct DynamicTeResult {
+  std::vector<double> time_s;            // from the first sample's timestamp
+  std::vector<double> output_angle_rad;  // θ2, from its first value
+  std::vector<double> te_arcsec;
+  double mean_arcsec = 0;
+  double p2p_arcsec = 0;
+  double rms_arcsec = 0;      // about the mean
+  double input_speed_hz = 0;  // f_H, mean
+  double sample_rate_hz = 0;  // mean, from the timestamps
+  double nyquist_hz = 0;
+  double output_revolutions = 0;
+  analysis::AmplitudeSpectrum spectrum_hz;  // amplitude in arcsec
+  std::vector<double> order_output;         // order-spectrum axis, output orders
+  std::vector<double> order_amplitude_arcsec;
+  double order_resolution = 0;  // output orders per bin
+  std::vector<NamedPeak> peaks;
+  std::vector<AliasedComponent> aliased;
+};
+
+// time_s from the samples' receive timestamps (strictly increasing); θ_in, θ_out unwrapped.
+// Throws std::invalid_argument naming the quantity when the record is shorter than one output
+// revolution, the lengths differ, or time or the output angle are not strictly monotone.
+DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
+                                   std::span<const double> theta_in_rad,
+                                   std::span<const double> theta_out_rad, const GearSense& sense,
+                                   const GearTeeth& teeth,
+                                   std::span<const PredictedComponent> predicted,
+                                   const DynamicTeOptions& options,
+                                   analysis::SpectrumAnalyser& analyser);
+
+// Spectrum of a record with irregular timestamps: linear resampling onto a uniform grid at
+// the mean rate over the same span, then the amplitude spectrum.
+analysis::AmplitudeSpectrum spectrum_on_timestamps(std::span<const double> time_s,
+                                                   std::span<const double> signal,
+                                                   analysis::Window window,
+                                                   analysis::SpectrumAnalyser& analyser);
+
+// Where a line at `frequency_hz` appears when sampled at `sample_rate_hz`.
+double folded_frequency(double frequency_hz, double sample_rate_hz);
+
+nlohmann::json to_json(const DynamicTeResult& result);
+
+}  // namespace wavebench::procedures

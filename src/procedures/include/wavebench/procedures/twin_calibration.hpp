@@ -1,0 +1,70 @@
+#pragma once
+// The twin beside the bench (bench.md §5): the residual between measured and predicted TE,
+// and the calibration fit of the twin's TE harmonics, stiffness and backlash to a run.
+
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/procedures/static_te_statistics.hpp"
+
+namespace wavebench::procedures {
+
+struct TwinResidual {
+  std::vector<double> residual_arcsec;  // measured − predicted, per sample
+  double mean_arcsec = 0;
+  double rms_arcsec = 0;  // of the residual as it is (an offset is a residual too)
+  double p2p_arcsec = 0;
+  analysis::AmplitudeSpectrum spectrum_hz;  // on the real timestamps, amplitude in arcsec
+};
+
+// Throws std::invalid_argument when the lengths differ or there are fewer than 8 samples.
+TwinResidual twin_residual(std::span<const double> time_s, std::span<const double> measured_te_rad,
+                           std::span<const double> predicted_te_rad, analysis::Window window,
+                           analysis::SpectrumAnalyser& analyser);
+
+// One term of the ordered harmonic basis: sin(a·θ1 + b·θ2 + φ), θ2 in the model's convention.
+struct HarmonicOrder {
+  std::string name;
+  double order_input = 0;   // a
+  double order_output = 0;  // b
+};
+
+struct FittedHarmonic {
+  std::string name;
+  double order_input = 0;
+  double order_output = 0;
+  double amplitude_rad = 0;  // A ≥ 0
+  double phase_rad = 0;      // φ in (−π, π]
+};
+
+struct HarmonicFit {
+  double offset_rad = 0;
+  std::vector<FittedHarmonic> harmonics;
+  double rms_residual_rad = 0;
+  double evaluate(double theta1, double theta2) const;
+};
+
+// Linear least squares of TE on {1, sin(a·θ1 + b·θ2), cos(a·θ1 + b·θ2)} per order. Throws
+// std::invalid_argument when there are fewer samples than unknowns or an order is repeated.
+HarmonicFit fit_te_harmonics(std::span<const double> theta1_rad, std::span<const double> theta2_rad,
+                             std::span<const double> te_rad, std::span<const HarmonicOrder> orders);
+
+// Backlash and secant stiffness from a static TE run at two loads (the lowest and the highest):
+// backlash = mean lost motion at the lowest load; shift = loaded − unloaded mean TE, averaged
+// over the directions; K = ΔT / shift.
+struct StiffnessBacklashEstimate {
+  double backlash_rad = 0;
+  double shift_rad = 0;
+  double load_nm = 0;  // ΔT between the two loads
+  double stiffness_nm_per_rad = 0;
+};
+// Throws std::invalid_argument when the run lacks two loads or a forward/reverse pair.
+StiffnessBacklashEstimate estimate_stiffness_backlash(const StaticTeResult& run);
+
+nlohmann::json to_json(const HarmonicFit& fit);
+nlohmann::json to_json(const TwinResidual& residual);
+
+}  // namespace wavebench::procedures
