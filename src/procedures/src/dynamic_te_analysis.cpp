@@ -31,9 +31,17 @@ std::vector<OrderName> order_names(const GearSense& sense, const GearTeeth& teet
     names.push_back({"output 1/rev" + suffix, static_cast<double>(k)});
     if (teeth.z_flex > 0) names.push_back({"mesh" + suffix, static_cast<double>(k * teeth.z_flex)});
   }
-  names.push_back({"wave generator 1/rev", sense.ratio});
-  names.push_back({"wave generator " + std::to_string(teeth.wave_number) + "/rev",
-                   teeth.wave_number * sense.ratio});
+  // With z_C − z_F = U the mesh (z_F per output revolution) is also U per wave-generator
+  // revolution; the line keeps the earlier name.
+  const auto add_unless_named = [&names](std::string name, double order) {
+    for (const auto& n : names) {
+      if (std::abs(n.order_output - order) < 1e-9) return;
+    }
+    names.push_back({std::move(name), order});
+  };
+  add_unless_named("wave generator 1/rev", sense.ratio);
+  add_unless_named("wave generator " + std::to_string(teeth.wave_number) + "/rev",
+                   teeth.wave_number * sense.ratio);
   return names;
 }
 
@@ -162,7 +170,7 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
     double best = tolerance;
     for (const auto& candidate : names) {
       const double d = std::abs(candidate.order_output - p.frequency_hz);
-      if (d <= best) {
+      if (d < best || (d == best && named.name == "unnamed")) {  // ties: the first name
         best = d;
         named.name = candidate.name;
         if (d == 0) break;

@@ -33,7 +33,11 @@ void SettleDetector::start(double time_s) {
 SettleState SettleDetector::add(double time_s, double theta_out_rad, double output_speed_rad_s) {
   if (state_ != SettleState::kSettling) return state_;
   // A sample too fast restarts the window: settling needs an unbroken quiet stretch.
-  if (std::abs(output_speed_rad_s) > criteria_.max_speed_rad_s) window_.clear();
+  if (std::abs(output_speed_rad_s) > criteria_.max_speed_rad_s) {
+    window_.clear();
+    if (time_s - started_at_ >= criteria_.max_settle_s) state_ = SettleState::kTimedOut;
+    return state_;
+  }
   window_.push_back({time_s, theta_out_rad, output_speed_rad_s});
   // Keep only the samples that are needed to cover one window back from now.
   while (window_.size() > 1 && time_s - window_[1].t >= criteria_.window_s) window_.pop_front();
