@@ -29,6 +29,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       if ((op & 0x80) != 0 && requests < 8) {
         ++requests;
         if ((op & 0x40) != 0) {
+          sdo.set_block_upload((op & 0x20) != 0, static_cast<std::uint8_t>(1 + (op & 0x03)));
           sdo.async_upload(0x2000, op & 0x0F, [&](std::error_code, std::vector<std::uint8_t> d) {
             ++completions;
             if (d.size() > (1U << 20)) std::abort();

@@ -174,6 +174,49 @@ TEST_F(SdoFixture, RequestsQueueAndCompleteInOrder) {
   EXPECT_EQ(order, (std::vector<int>{1, 2}));
 }
 
+TEST_F(SdoFixture, BlockUploadByteExact) {
+  sdo.set_block_upload(true, 127);
+  peer.expect("601#A00810007F000000", {"581#C20810000A000000"});
+  peer.expect("601#A300000000000000",
+              {"581#0130313233343536", "581#8237383900000000"});  // 7 + 3 bytes, last = seq 2
+  peer.expect("601#A2027F0000000000", {"581#D100000000000000"});  // end: 4 bytes unused
+  const auto data = sdo.upload(0x1008, 0);
+  EXPECT_EQ(std::string(data.begin(), data.end()), "0123456789");
+  io.restart();
+  io.poll();
+  EXPECT_TRUE(peer.done());
+  EXPECT_EQ(peer.received().back(), "601#A100000000000000");
+}
+
+TEST_F(SdoFixture, BlockUploadAcksEveryBlock) {
+  sdo.set_block_upload(true, 2);
+  peer.expect("601#A008100002000000", {"581#C008100000000000"});  // size not indicated
+  peer.expect("601#A300000000000000", {"581#0141414141414141", "581#0242424242424242"});
+  peer.expect("601#A202020000000000", {"581#8143000000000000"});
+  peer.expect("601#A201020000000000", {"581#D900000000000000"});  // 6 unused
+  const auto data = sdo.upload(0x1008, 0);
+  EXPECT_EQ(std::string(data.begin(), data.end()), "AAAAAAABBBBBBBC");
+}
+
+TEST_F(SdoFixture, BlockUploadFallsBackToSegmentedWhenUnsupported) {
+  sdo.set_block_upload(true, 127);
+  peer.expect("601#A00810007F000000", {"581#8008100001000405"});
+  peer.expect("601#4008100000000000", {"581#4F08100041000000"});
+  EXPECT_EQ(sdo.read<std::uint8_t>(0x1008, 0), 0x41);
+}
+
+TEST_F(SdoFixture, BlockUploadSequenceErrorIsAborted) {
+  sdo.set_block_upload(true, 127);
+  peer.expect("601#A00810007F000000", {"581#C20810000A000000"});
+  peer.expect("601#A300000000000000", {"581#0230313233343536"});  // seq 2 first
+  std::error_code ec;
+  sdo.upload(0x1008, 0, ec);
+  EXPECT_EQ(ec, make_error_code(SdoAbort::invalid_sequence));
+  io.restart();
+  io.poll();
+  EXPECT_EQ(peer.received().back(), "601#8008100003000405");
+}
+
 TEST_F(SdoFixture, RepliesForOtherNodesAreIgnored) {
   peer.expect("601#4018100100000000", {"582#4318100100000000", "581#4318100101000000"});
   EXPECT_EQ(sdo.read<std::uint32_t>(0x1018, 1), 1U);

@@ -11,6 +11,8 @@ constexpr std::uint8_t kCcsDownloadSegment = 0x00;
 constexpr std::uint8_t kCcsInitiateDownload = 0x20;
 constexpr std::uint8_t kCcsInitiateUpload = 0x40;
 constexpr std::uint8_t kCcsUploadSegment = 0x60;
+constexpr std::uint8_t kCcsBlockUpload = 0xA0;
+constexpr std::uint8_t kScsBlockUpload = 0xC0;
 constexpr std::uint8_t kAbort = 0x80;
 constexpr std::uint8_t kScsUploadSegment = 0x00;
 constexpr std::uint8_t kScsDownloadSegment = 0x20;
@@ -61,6 +63,7 @@ SdoClient::~SdoClient() {
 void SdoClient::async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler) {
   Request r;
   r.upload = true;
+  r.block = block_upload_;
   r.index = index;
   r.sub = sub;
   r.on_upload = std::move(handler);
@@ -95,6 +98,14 @@ void SdoClient::start_next() noexcept {
 }
 
 void SdoClient::send_current() noexcept {
+  if (current_.upload && current_.block) {
+    auto f = request(node_, kCcsBlockUpload);  // initiate, client CRC support off
+    put_mux(f, current_.index, current_.sub);
+    f.data[4] = block_size_;
+    f.data[5] = 0;  // protocol switch threshold: never switch
+    send_frame(f);
+    return;
+  }
   if (current_.upload) {
     auto f = request(node_, kCcsInitiateUpload);
     put_mux(f, current_.index, current_.sub);
@@ -181,10 +192,19 @@ void SdoClient::on_frame(const can::Frame& frame) noexcept {
     if (frame.len >= 4 && !mux_matches(frame, current_.index, current_.sub)) return;
     const std::uint32_t code =
         frame.len >= 8 ? le32(&frame.data[4]) : static_cast<std::uint32_t>(SdoAbort::general);
+    if (current_.upload && current_.block && phase_ == Phase::initiate &&
+        code == static_cast<std::uint32_t>(SdoAbort::invalid_command)) {
+      // No block transfer on this server: the same upload, segmented.
+      current_.block = false;
+      send_current();
+      return;
+    }
     finish(std::error_code(static_cast<int>(code), sdo_category()));
     return;
   }
-  if (current_.upload) {
+  if (current_.upload && current_.block) {
+    handle_block_upload(frame);
+  } else if (current_.upload) {
     handle_upload(frame);
   } else {
     handle_download(frame);
@@ -235,6 +255,66 @@ void SdoClient::handle_upload(const can::Frame& frame) noexcept {
   toggle_ = !toggle_;
   auto f = request(node_, static_cast<std::uint8_t>(kCcsUploadSegment | (toggle_ ? kToggle : 0)));
   send_frame(f);
+}
+
+void SdoClient::handle_block_upload(const can::Frame& frame) noexcept {
+  const std::uint8_t cmd = frame.data[0];
+  switch (phase_) {
+    case Phase::initiate: {
+      if ((cmd & 0xE1) != kScsBlockUpload) return fail_with_abort(SdoAbort::invalid_command);
+      if (!mux_matches(frame, current_.index, current_.sub)) return;
+      if ((cmd & 0x02) != 0) {
+        if (frame.len < 8) return fail_with_abort(SdoAbort::length_mismatch);
+        size_indicated_ = true;
+        expected_size_ = le32(&frame.data[4]);
+      }
+      phase_ = Phase::block_data;
+      sequence_ = 0;
+      send_frame(request(node_, kCcsBlockUpload | 0x03));  // start upload
+      return;
+    }
+    case Phase::block_data: {
+      const std::uint8_t seq = cmd & 0x7F;
+      const bool last = (cmd & 0x80) != 0;
+      if (seq != sequence_ + 1 || seq > block_size_) {
+        return fail_with_abort(SdoAbort::invalid_sequence);
+      }
+      sequence_ = seq;
+      received_.insert(received_.end(), frame.data.begin() + 1, frame.data.begin() + frame.len);
+      if (received_.size() > (std::size_t{1} << 28)) {
+        return fail_with_abort(SdoAbort::out_of_memory);
+      }
+      if (!last && seq < block_size_) {
+        arm_timer();  // the server streams the block: each segment restarts the timeout
+        return;
+      }
+      auto ack = request(node_, kCcsBlockUpload | 0x02);
+      ack.data[1] = seq;
+      ack.data[2] = block_size_;
+      sequence_ = 0;
+      if (last) phase_ = Phase::block_end;
+      send_frame(ack);
+      return;
+    }
+    case Phase::block_end: {
+      if ((cmd & 0xE1) != (kScsBlockUpload | 0x01)) {
+        return fail_with_abort(SdoAbort::invalid_command);
+      }
+      const std::size_t unused = (cmd >> 2) & 0x07U;
+      if (unused > received_.size()) return fail_with_abort(SdoAbort::length_mismatch);
+      received_.resize(received_.size() - unused);
+      if (size_indicated_ && received_.size() != expected_size_) {
+        return fail_with_abort(received_.size() < expected_size_ ? SdoAbort::length_too_low
+                                                                 : SdoAbort::length_too_high);
+      }
+      std::error_code ec;
+      bus_.send(request(node_, kCcsBlockUpload | 0x01), ec);  // end response
+      finish(ec);
+      return;
+    }
+    case Phase::segment:
+      return;
+  }
 }
 
 void SdoClient::handle_download(const can::Frame& frame) noexcept {

@@ -40,6 +40,12 @@ class SdoClient {
   std::chrono::milliseconds timeout() const noexcept { return timeout_; }
   // Whether to send an abort frame when the server stays silent past the timeout (default on).
   void set_abort_on_timeout(bool on) noexcept { abort_on_timeout_ = on; }
+  // Uploads by SDO block transfer (CiA 301 §7.2.4.3.9; no CRC, blocks of `block_size`
+  // segments), falling back to segmented when the server answers "command not valid".
+  void set_block_upload(bool on, std::uint8_t block_size = 127) noexcept {
+    block_upload_ = on;
+    block_size_ = block_size == 0 || block_size > 127 ? std::uint8_t{127} : block_size;
+  }
 
   void async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler);
   void async_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
@@ -94,13 +100,14 @@ class SdoClient {
  private:
   struct Request {
     bool upload = true;
+    bool block = false;
     std::uint16_t index = 0;
     std::uint8_t sub = 0;
     std::vector<std::uint8_t> data;
     UploadHandler on_upload;
     DownloadHandler on_download;
   };
-  enum class Phase { initiate, segment };
+  enum class Phase { initiate, segment, block_data, block_end };
 
   void start_next() noexcept;
   void send_current() noexcept;
@@ -110,6 +117,7 @@ class SdoClient {
   void send_abort(std::uint32_t code) noexcept;
   void finish(std::error_code ec) noexcept;
   void handle_upload(const can::Frame& frame) noexcept;
+  void handle_block_upload(const can::Frame& frame) noexcept;
   void handle_download(const can::Frame& frame) noexcept;
   void send_download_segment() noexcept;
   void fail_with_abort(SdoAbort code) noexcept;
@@ -120,6 +128,9 @@ class SdoClient {
   NodeId node_;
   std::chrono::milliseconds timeout_;
   bool abort_on_timeout_ = true;
+  bool block_upload_ = false;
+  std::uint8_t block_size_ = 127;
+  std::uint8_t sequence_ = 0;  // block upload: last sequence number received in this block
   boost::asio::steady_timer timer_;
   can::CanBus::Subscription subscription_;
   std::deque<Request> queue_;
