@@ -180,3 +180,15 @@ TEST(MotionClassifier, CommensurateLinesRepeatingAfterManyStrobesAreQuasiPeriodi
   EXPECT_EQ(m.motion, wa::MotionClass::kQuasiPeriodic) << m.summary;
   EXPECT_EQ(m.evidence.period, 135);
 }
+
+TEST(MotionClassifier, ContractingTransientIsUndetermined) {
+  // A section spiralling into a fixed point (factor 0.8 per strobe): exponent ln 0.8 < 0.
+  std::vector<wa::PhasePoint> section;
+  for (int k = 0; k < 100; ++k) {
+    const double r = std::pow(0.8, k);
+    section.push_back({r * std::cos(2.4 * k), r * std::sin(2.4 * k)});
+  }
+  const auto m = wa::classify_motion(section, {}, {});
+  EXPECT_EQ(m.motion, wa::MotionClass::kUndetermined) << m.summary;
+  EXPECT_LT(m.evidence.lyapunov_per_period, -0.05);
+}

@@ -229,14 +229,25 @@ MotionClassification classify_motion(std::span<const PhasePoint> section,
         << " strobe periods (commensurate lines)";
   } else {
     ev.lyapunov_per_period = largest_lyapunov(p);
-    const bool chaotic = ev.lyapunov_per_period > options.chaotic_lyapunov ||
-                         ev.correlation_dimension > options.chaotic_dimension;
-    result.motion = chaotic ? MotionClass::kChaotic : MotionClass::kQuasiPeriodic;
-    why << (chaotic ? "chaotic: " : "quasi-periodic: ") << ev.clusters << " clusters in "
-        << ev.points << " points, correlation dimension " << ev.correlation_dimension
-        << ", largest Lyapunov exponent " << ev.lyapunov_per_period << " per strobe period"
-        << (chaotic ? " (neighbours diverge / points fill an area)"
-                    : " (points on a closed curve, neighbours stay close)");
+    // D2 needs a few hundred points to mean anything; a contracting section is a transient
+    // still settling onto its attractor, not an attractor to classify.
+    const bool enough_for_dimension = ev.points >= 200;
+    if (ev.lyapunov_per_period < -options.chaotic_lyapunov) {
+      result.motion = MotionClass::kUndetermined;
+      why << "undetermined: the section still contracts (largest Lyapunov exponent "
+          << ev.lyapunov_per_period << " per strobe period, " << ev.clusters << " clusters in "
+          << ev.points << " points): the transient is not over; record longer";
+    } else {
+      const bool chaotic =
+          ev.lyapunov_per_period > options.chaotic_lyapunov ||
+          (enough_for_dimension && ev.correlation_dimension > options.chaotic_dimension);
+      result.motion = chaotic ? MotionClass::kChaotic : MotionClass::kQuasiPeriodic;
+      why << (chaotic ? "chaotic: " : "quasi-periodic: ") << ev.clusters << " clusters in "
+          << ev.points << " points, correlation dimension " << ev.correlation_dimension
+          << ", largest Lyapunov exponent " << ev.lyapunov_per_period << " per strobe period"
+          << (chaotic ? " (neighbours diverge / points fill an area)"
+                      : " (points on a closed curve, neighbours stay close)");
+    }
   }
   result.summary = why.str();
   return result;
