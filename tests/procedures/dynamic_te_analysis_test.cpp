@@ -7,6 +7,7 @@
 #include <random>
 
 #include "wavebench/analysis/spectral_peaks.hpp"
+#include "wavebench/procedures/dynamic_te_input.hpp"
 
 namespace wavebench::procedures {
 namespace {
@@ -132,6 +133,33 @@ TEST(DynamicTe, ShorterThanOneOutputRevolutionIsRejected) {
   EXPECT_THROW(analyse_dynamic_te(rec.t, rec.theta_in, rec.theta_out, GearSense{kN, 1},
                                   GearTeeth{160, 162, 2}, {}, DynamicTeOptions{}, analyser),
                std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace wavebench::procedures
+
+namespace wavebench::procedures {
+namespace {
+
+TEST(DynamicTeInput, KeepsValidSamplesOnTheirTimestampsAndCountsTheRest) {
+  std::vector<storage::SyncSample> samples(6);
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    samples[i].flags = storage::kAllChannelsValid;
+    samples[i].receive_time_ns = 5'000'000'000 + static_cast<std::int64_t>(i) * 1'000'000;
+    samples[i].theta_in_rad = static_cast<double>(i);
+    samples[i].theta_out_rad = static_cast<double>(i) / 80;
+  }
+  samples[2].flags &= ~storage::kThetaOutValid;
+  samples[4].receive_time_ns = samples[3].receive_time_ns;
+  samples[5].missed_before = 3;
+  samples[5].receive_time_ns += 3'000'000;
+  const auto in = dynamic_te_input(samples);
+  ASSERT_EQ(in.time_s.size(), 4u);
+  EXPECT_EQ(in.skipped_invalid, 1u);
+  EXPECT_EQ(in.skipped_out_of_order, 1u);
+  EXPECT_EQ(in.missed_cycles, 3u);
+  EXPECT_DOUBLE_EQ(in.time_s[3], 0.008);
+  EXPECT_DOUBLE_EQ(in.theta_in_rad[2], 3.0);
 }
 
 }  // namespace
