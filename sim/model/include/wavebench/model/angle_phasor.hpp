@@ -25,7 +25,8 @@ inline double fmadd(double a, double b, double c) noexcept {
 // and 53 bits (Cody-Waite: k times each of the first two is exact for |k| < 2^20) and sums the
 // Taylor series to degree 15/16 on |r| <= pi/4, whose truncation error (pi/4)^17/17! = 4e-18
 // is below a rounding. Larger arguments fall back to libm.
-inline Phasor unit_phasor(double angle) noexcept {
+// Inlined so the independent phasors of one evaluation overlap in the pipeline.
+[[gnu::always_inline]] inline Phasor unit_phasor(double angle) noexcept {
   if (!(std::abs(angle) < 1.6e6)) return {std::cos(angle), std::sin(angle)};
   constexpr double kTwoOverPi = 0.63661977236758134308;
   constexpr double kPio2Hi = 1.5707963267341256;      // pi/2 to 33 bits
