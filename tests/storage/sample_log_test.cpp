@@ -85,6 +85,23 @@ TEST(SampleLog, FlushesEveryNRecordsSoAReaderSeesThemBeforeClose) {
   EXPECT_EQ(read_sample_log(path).samples.size(), 25u);
 }
 
+TEST(SampleLog, FlushIfDueWritesBufferedRecordsOnceTheIntervalHasPassed) {
+  const auto dir = testing::fresh_test_dir();
+  const auto path = dir / "samples.wbs";
+  SampleLogWriterOptions options;
+  options.flush_every_records = 1000;
+  options.flush_interval = std::chrono::milliseconds(0);  // always due: no clock in the test
+  SampleLogWriter writer(path, options);
+  writer.append(make_sample(0));  // due at append already
+  EXPECT_EQ(writer.records_flushed(), 1u);
+  options.flush_interval = std::chrono::hours(1);
+  SampleLogWriter slow(dir / "slow.wbs", options);
+  slow.append(make_sample(0));
+  slow.flush_if_due();
+  EXPECT_EQ(slow.records_flushed(), 0u);
+  EXPECT_EQ(read_sample_log(dir / "slow.wbs").samples.size(), 0u);
+}
+
 TEST(SampleLog, TornLastRecordIsIgnoredAndReported) {
   const auto dir = testing::fresh_test_dir();
   const auto path = dir / "samples.wbs";

@@ -148,6 +148,10 @@ void SampleLogWriter::flush() {
   last_flush_ = std::chrono::steady_clock::now();
 }
 
+void SampleLogWriter::flush_if_due() {
+  if (std::chrono::steady_clock::now() - last_flush_ >= options_.flush_interval) flush();
+}
+
 void SampleLogWriter::checkpoint() {
   flush();
   if (fd_ < 0) return;

@@ -54,6 +54,9 @@ class SampleLogWriter {
   // Returns the sample as stored.
   SyncSample append(SyncSample sample);
   void flush();
+  // For the acquisition's timer: flushes when the interval has passed since the last flush,
+  // so a stalled bus does not leave samples buffered.
+  void flush_if_due();
   void checkpoint();  // flush + fdatasync
   void close();       // checkpoint and close; the destructor does it too
 
