@@ -27,16 +27,30 @@ std::vector<SpectralPeak> find_peaks(const AmplitudeSpectrum& spectrum, const Pe
   if (a.size() < 3) return peaks;
   const double max_f =
       search.max_frequency_hz > 0 ? search.max_frequency_hz : spectrum.frequency_hz.back();
+  // Local maxima first; only the largest few are interpolated: a noisy floor holds tens of
+  // thousands of maxima and each interpolation bisects the window's lobe.
+  std::vector<std::size_t> maxima;
   for (std::size_t k = 1; k + 1 < a.size(); ++k) {
     const double f = spectrum.frequency_hz[k];
     if (f > max_f || f < search.min_frequency_hz) continue;
-    if (!(a[k] > a[k - 1] && a[k] >= a[k + 1])) continue;
+    if (a[k] > a[k - 1] && a[k] >= a[k + 1]) maxima.push_back(k);
+  }
+  const std::size_t keep =
+      search.max_peaks > 0
+          ? std::max<std::size_t>(64, 4 * static_cast<std::size_t>(search.max_peaks))
+          : maxima.size();
+  if (maxima.size() > keep) {
+    std::nth_element(maxima.begin(), maxima.begin() + static_cast<std::ptrdiff_t>(keep),
+                     maxima.end(), [&](std::size_t x, std::size_t y) { return a[x] > a[y]; });
+    maxima.resize(keep);
+  }
+  for (const std::size_t k : maxima) {
     SpectralPeak peak;
     peak.bin = static_cast<int>(k);
     const double left = a[k - 1];
     const double right = a[k + 1];
     double offset = 0;
-    if (spectrum.window == Window::kRectangular || right > 0 || left > 0) {
+    if (right > 0 || left > 0) {
       offset = right >= left ? offset_from_ratio(spectrum.window, right / a[k])
                              : -offset_from_ratio(spectrum.window, left / a[k]);
     }
