@@ -12,6 +12,9 @@ int main(int argc, char** argv) {
   wavebench::cli::register_can_commands(app, status);
   wavebench::cli::register_brake_commands(app, status);
   wavebench::cli::register_simbench_commands(app, status);
+  wavebench::cli::register_run_commands(app, status);
+  wavebench::cli::register_daemon_client_commands(app, status);
+  wavebench::cli::register_report_commands(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

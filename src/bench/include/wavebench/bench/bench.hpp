@@ -1,0 +1,105 @@
+#pragma once
+// The daemon's view of a bench (bench.md §1, §7), after ros2_control's hardware interfaces: an
+// abstract bench with a lifecycle and an error state, not copyable, that procedures drive with
+// blocking calls and that hands every assembled SYNC sample to its observers.
+//
+// Threads: one bench thread owns the bench. Every call below except request_stop(),
+// state(), fault_reason() and description() is made on it. Blocking calls run the bench's event
+// loop while they wait, so SYNC, PDOs, acquisition, heartbeats and safety keep working during
+// a move or a wait. Observers are called on the bench thread and must not block (the twin
+// copies the sample into its own queue).
+//
+// Time: now() is bench time in seconds since connect(). On a real bench it follows the steady
+// clock. On the simulated clock (BenchDescription::simulated_clock) bench time is
+// SYNC index × SYNC period and SYNCs are produced as fast as the simulated devices answer, so a
+// run takes a fraction of its real duration; waits and timeouts given here are in bench time.
+//
+// Safety: a safety trigger (heartbeat lost, EMCY, Modbus link lost past its timeout, a limit
+// crossed, request_stop) puts the bench in its safe state at once (brake output to its safe
+// value, servo quick stop), moves the lifecycle to kFault with the reason, and makes the
+// blocking call in progress (and every later motion call) throw BenchAborted. Samples acquired
+// up to then have already gone to the observers.
+
+#include <functional>
+#include <memory>
+#include <stdexcept>
+#include <string>
+
+#include "wavebench/bench/bench_description.hpp"
+#include "wavebench/storage/sync_sample.hpp"
+
+namespace wavebench::bench {
+
+enum class BenchLifecycle { kUnconfigured, kReady, kFault };
+const char* lifecycle_name(BenchLifecycle state);
+
+// Thrown by a blocking call when the bench has tripped; what() is the reason.
+class BenchAborted : public std::runtime_error {
+ public:
+  explicit BenchAborted(const std::string& reason) : std::runtime_error(reason) {}
+};
+
+class SampleObserver {
+ public:
+  virtual ~SampleObserver() = default;
+  // Called once per SYNC cycle with the sample as assembled (flags tell missing channels).
+  virtual void on_sample(const storage::SyncSample& sample) noexcept = 0;
+};
+
+struct AcquisitionStats {
+  std::uint64_t syncs_sent = 0;
+  std::uint64_t samples = 0;          // samples handed to observers
+  std::uint64_t incomplete_samples = 0;  // a channel missing
+  std::uint64_t sync_late = 0;        // SYNC producer woke late (real clock only)
+  std::uint64_t sync_skipped = 0;     // whole periods skipped (real clock only)
+  double bus_load = 0;                // estimated fraction of the bus bit rate
+};
+
+class Bench {
+ public:
+  Bench() = default;
+  virtual ~Bench() = default;
+  Bench(const Bench&) = delete;
+  Bench& operator=(const Bench&) = delete;
+
+  virtual const BenchDescription& description() const noexcept = 0;
+
+  // Boots the nodes (NMT), configures PDOs by SDO, arms heartbeat consumers, starts SYNC and
+  // acquisition, connects the brake (released), enables the drive. kUnconfigured -> kReady.
+  // Throws std::runtime_error naming the device and what failed.
+  virtual void connect() = 0;
+  // Safe state, drive disabled, SYNC stopped. Never throws.
+  virtual void disconnect() noexcept = 0;
+  virtual BenchLifecycle state() const noexcept = 0;
+  virtual std::string fault_reason() const = 0;
+  // kFault -> kReady: brake alarm reset, drive fault reset and re-enabled. Throws when the
+  // cause persists (e.g. heartbeat still missing).
+  virtual void clear_fault() = 0;
+
+  // Profile-position move of the input (motor) shaft to an absolute angle [rad, unwrapped],
+  // at `speed` [rad/s of the input]; returns when the drive reports target reached.
+  virtual void move_input_to(double theta_in_rad, double speed_rad_s) = 0;
+  // Profile-velocity run of the input shaft [rad/s, signed]; returns once commanded.
+  virtual void run_input_velocity(double omega_in_rad_s) = 0;
+  // Velocity to zero and wait until the input stands still.
+  virtual void stop_motion() = 0;
+  // Brake torque setpoint [N·m, >= 0] with a ramp [N·m/s, 0 = step]; returns once commanded.
+  virtual void set_brake_torque(double torque_nm, double ramp_nm_per_s = 0) = 0;
+  // Runs the bench for `seconds` of bench time.
+  virtual void wait_for(double seconds) = 0;
+  // Runs the bench until `done()` (checked after every sample) or `timeout_s` of bench time;
+  // returns whether done() became true.
+  virtual bool wait_until(const std::function<bool()>& done, double timeout_s) = 0;
+  virtual double now() const = 0;
+  // The last assembled sample (all zero before the first).
+  virtual const storage::SyncSample& latest_sample() const = 0;
+
+  virtual void add_observer(SampleObserver& observer) = 0;
+  virtual void remove_observer(SampleObserver& observer) = 0;
+  virtual AcquisitionStats acquisition_stats() const = 0;
+
+  // Operator stop, from any thread: trips the bench with `reason` (see Safety above).
+  virtual void request_stop(const std::string& reason) noexcept = 0;
+};
+
+}  // namespace wavebench::bench

@@ -1,0 +1,41 @@
+#pragma once
+// What a procedure needs to know about the bench it runs on.
+
+#include <string>
+
+#include "wavebench/model/gear_params.hpp"
+#include "wavebench/procedures/gear_sense.hpp"
+
+namespace wavebench::bench {
+
+struct SafetyLimits {  // bench.md §7; a value <= 0 switches that limit off
+  double max_input_speed_rad_s = 0;
+  double max_brake_current_a = 0;
+  double max_brake_torque_nm = 0;
+  double max_measured_torque_nm = 0;
+  double max_following_error_rad = 0;  // input side
+  double max_coil_temperature_c = 0;
+  double max_te_excursion_rad = 0;     // |TE| at the output
+  double heartbeat_timeout_s = 0;      // consumer time per node
+  double modbus_link_timeout_s = 0;
+};
+
+struct BenchDescription {
+  std::string name;         // "sim" for the in-process simulated bench, or the config's name
+  std::string unit_serial;  // the gear under test
+  procedures::GearSense sense;  // ratio N and the output direction sign
+  double sync_period_s = 1e-3;
+  bool simulated_clock = false;
+  double rated_torque_nm = 0;  // of the unit under test (lost-motion ladder, ±x % of rated)
+  double max_brake_torque_nm = 0;
+  // Noise of the sensors as configured (encoder, torque): the twin's residual floor.
+  double output_encoder_noise_rad = 0;
+  double input_encoder_resolution_rad = 0;
+  double torque_noise_nm = 0;
+  // The twin's nominal gear (its own parameters, not the simulated unit's "true" ones).
+  model::GearParams twin_gear;
+  std::string twin_case_path;  // where twin_gear came from (copied into run folders)
+  SafetyLimits limits;
+};
+
+}  // namespace wavebench::bench

@@ -1,0 +1,51 @@
+#pragma once
+// Running one procedure on a connected bench, as a recorded run (bench.md §4, §5; issue #5):
+// the run folder is created in the RunStore, every sample goes to samples.wbs as it is
+// acquired, the twin runs beside the bench, results.json (with the twin's residual) and the
+// report are written at the end, and the run is finished complete or aborted with its reason.
+//
+// This is the one entry point the daemon and `wavebench run` share.
+
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/storage/run_store.hpp"
+
+namespace wavebench::runs {
+
+struct RunRequest {
+  std::string procedure;  // "static", "dynamic" or "lost-motion"
+  // Procedure options (e.g. {"positions": 24, "loads_nm": [0, 60]} for static); missing keys
+  // take the procedure's defaults. Validated before anything is created on disk.
+  nlohmann::json options = nlohmann::json::object();
+  std::string config_text;  // the bench config the run started with (copied, hashed)
+  bool twin = true;         // run the twin beside the bench
+  bool report = true;       // write report.html and its plots into the run folder
+};
+
+struct RunProgress {
+  std::string run_id;
+  std::string phase;  // e.g. "static forward 0 N·m", "dynamic run-in", "twin calibration"
+  double fraction = 0;  // 0..1 of the whole run
+};
+
+struct RunOutcome {
+  std::string run_id;
+  storage::RunStatus status = storage::RunStatus::kComplete;  // kComplete or kAborted
+  std::string reason;                                          // why it was aborted
+  nlohmann::json results;                                      // as written to results.json
+  std::filesystem::path dir;
+};
+
+using ProgressSink = std::function<void(const RunProgress&)>;
+
+// Throws std::invalid_argument naming the option key, its value and what was expected when
+// the request is bad (nothing is created then). A bench trip during the run is not an
+// exception: the outcome is kAborted with the trip's reason, the data so far kept on disk.
+RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunRequest& request,
+                       const ProgressSink& progress = {});
+
+}  // namespace wavebench::runs
