@@ -48,8 +48,25 @@ double HarmonicFit::evaluate(double theta1, double theta2) const {
 HarmonicFit fit_te_harmonics(std::span<const double> theta1_rad, std::span<const double> theta2_rad,
                              std::span<const double> te_rad,
                              std::span<const HarmonicOrder> orders) {
+  return fit_te_harmonics(theta1_rad, theta2_rad, te_rad, orders, {}).fit;
+}
+
+HarmonicRegression fit_te_harmonics(std::span<const double> theta1_rad,
+                                    std::span<const double> theta2_rad,
+                                    std::span<const double> te_rad,
+                                    std::span<const HarmonicOrder> orders,
+                                    std::span<const std::vector<double>> regressors) {
   const std::size_t n = te_rad.size();
-  const std::size_t unknowns = 1 + 2 * orders.size();
+  const std::size_t harmonic_unknowns = 1 + 2 * orders.size();
+  const std::size_t unknowns = harmonic_unknowns + regressors.size();
+  for (std::size_t r = 0; r < regressors.size(); ++r) {
+    if (regressors[r].size() != n) {
+      throw std::invalid_argument("TE harmonic fit: regressor " + std::to_string(r) + " has " +
+                                  std::to_string(regressors[r].size()) +
+                                  " values; expected one per TE sample (" + std::to_string(n) +
+                                  ")");
+    }
+  }
   if (theta1_rad.size() != n || theta2_rad.size() != n || n < unknowns) {
     throw std::invalid_argument("TE harmonic fit: " + std::to_string(n) + " TE samples, θ1 " +
                                 std::to_string(theta1_rad.size()) + ", θ2 " +
@@ -79,6 +96,9 @@ HarmonicFit fit_te_harmonics(std::span<const double> theta1_rad, std::span<const
       a(i, static_cast<Eigen::Index>(1 + 2 * j)) = std::sin(x);
       a(i, static_cast<Eigen::Index>(2 + 2 * j)) = std::cos(x);
     }
+    for (std::size_t r = 0; r < regressors.size(); ++r) {
+      a(i, static_cast<Eigen::Index>(harmonic_unknowns + r)) = regressors[r][k];
+    }
     b(i) = te_rad[k];
   }
   const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
@@ -92,7 +112,11 @@ HarmonicFit fit_te_harmonics(std::span<const double> theta1_rad, std::span<const
                              std::hypot(s, c), std::atan2(c, s)});
   }
   fit.rms_residual_rad = std::sqrt((a * x - b).squaredNorm() / static_cast<double>(n));
-  return fit;
+  HarmonicRegression out{std::move(fit), {}};
+  for (std::size_t r = 0; r < regressors.size(); ++r) {
+    out.coefficients.push_back(x(static_cast<Eigen::Index>(harmonic_unknowns + r)));
+  }
+  return out;
 }
 
 StiffnessBacklashEstimate estimate_stiffness_backlash(const StaticTeResult& run) {

@@ -52,6 +52,19 @@ struct HarmonicFit {
 HarmonicFit fit_te_harmonics(std::span<const double> theta1_rad, std::span<const double> theta2_rad,
                              std::span<const double> te_rad, std::span<const HarmonicOrder> orders);
 
+// The same fit with extra regressors beside the harmonic basis (the twin's calibration puts
+// the flank sign there for the backlash and the spring twist for the compliance), each a column
+// as long as te_rad; their coefficients come back in `coefficients`, in order.
+struct HarmonicRegression {
+  HarmonicFit fit;
+  std::vector<double> coefficients;
+};
+HarmonicRegression fit_te_harmonics(std::span<const double> theta1_rad,
+                                    std::span<const double> theta2_rad,
+                                    std::span<const double> te_rad,
+                                    std::span<const HarmonicOrder> orders,
+                                    std::span<const std::vector<double>> regressors);
+
 // Backlash and secant stiffness from a static TE run at two loads (the lowest and the highest):
 // backlash = mean lost motion at the lowest load; shift = loaded − unloaded mean TE, averaged
 // over the directions; K = ΔT / shift.
