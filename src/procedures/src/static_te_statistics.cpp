@@ -93,8 +93,14 @@ StaticTeResult analyse_static_te(std::span<const StaticTePass> passes, const Gea
       shift.reference_load_nm = reference->load_nm;
       shift.shift_arcmin = s.mean_arcmin - reference->mean_arcmin;
       if (shift.shift_arcmin != 0) {
+        // The torque the gear held, where measured: a brake holds the output with less than
+        // its setting once the output has come to rest (it also decelerated it). A brake only
+        // resists, so forward and reverse shift in opposite senses; K is a magnitude.
+        double torque = s.load_nm - reference->load_nm;
+        const double held = s.mean_torque_nm - reference->mean_torque_nm;
+        if (std::isfinite(held) && held != 0) torque = held;
         shift.stiffness_nm_per_rad =
-            (s.load_nm - reference->load_nm) / (shift.shift_arcmin / kArcminPerRad);
+            std::abs(torque) / std::abs(shift.shift_arcmin / kArcminPerRad);
       }
       result.load_shifts.push_back(shift);
     }

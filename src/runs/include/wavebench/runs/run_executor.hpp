@@ -28,15 +28,15 @@ struct RunRequest {
 
 struct RunProgress {
   std::string run_id;
-  std::string phase;  // e.g. "static forward 0 N·m", "dynamic run-in", "twin calibration"
+  std::string phase;    // e.g. "static forward 0 N·m", "dynamic run-in", "twin calibration"
   double fraction = 0;  // 0..1 of the whole run
 };
 
 struct RunOutcome {
   std::string run_id;
   storage::RunStatus status = storage::RunStatus::kComplete;  // kComplete or kAborted
-  std::string reason;                                          // why it was aborted
-  nlohmann::json results;                                      // as written to results.json
+  std::string reason;                                         // why it was aborted
+  nlohmann::json results;                                     // as written to results.json
   std::filesystem::path dir;
 };
 

@@ -64,9 +64,10 @@ class SimulatedBenchPlant {
   PlantState state_;
 };
 
-// A gear the simulated bench can use out of the box: a size-32-class unit (N = 134 from
-// 268/270 teeth), catalogue three-segment stiffness, 1 arcmin backlash, TE harmonics of a few
-// arcmin. These are the bench's "true" parameters, deliberately not the twin's nominal ones.
+// A gear the simulated bench can use out of the box, with the character of seed 004's unit
+// (N = 100 from 200/202 teeth, catalogue three-segment stiffness, 0.3 arcmin backlash, TE
+// harmonics of a few arcmin and a constant offset). These are the bench's "true" parameters,
+// deliberately not the twin's nominal ones.
 model::GearParams default_bench_gear();
 
 }  // namespace wavebench::simdevices

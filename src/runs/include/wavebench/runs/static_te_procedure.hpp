@@ -1,0 +1,57 @@
+#pragma once
+// Static TE (bench.md §4): n positions equally spaced over one output revolution; at each one
+// the input moves there (profile position), the output is left to settle (target reached, then
+// output speed and drift under thresholds, or the maximum settle time), and θ_in, θ_out and
+// torque are averaged over a window. A forward pass, then a reverse pass that approaches each
+// position from the other side; both at every load (brake torque).
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/procedures/settle_detector.hpp"
+#include "wavebench/procedures/static_te_statistics.hpp"
+#include "wavebench/runs/procedure_progress.hpp"
+
+namespace wavebench::runs {
+
+struct StaticTeOptions {
+  int positions = 24;
+  std::vector<double> loads_nm{0, 60};
+  double window_s = 0.5;           // averaging window at each settled position
+  double move_speed_rad_s = 62.8;  // input profile velocity (600 rpm)
+  double run_up_steps = 0.5;       // run-up before a pass, in position steps
+  // The last part of every move is slow: at profile speed the servo overshoots the target and
+  // pushes the output across the backlash, leaving it anywhere in the dead zone.
+  double approach_rad = 0.5;          // input angle of the slow final approach
+  double approach_speed_rad_s = 1.0;  // input
+  double brake_settle_s = 0.5;        // after a new brake torque, before the run-up move
+  double settle_block_s = 0.02;       // the settle detector sees block means (encoder noise)
+  procedures::SettleCriteria settle{5e-4, 1e-5, 0.1, 5.0};
+
+  // From the request's options ({"positions": 24, "loads_nm": [0, 60], ...}); missing keys keep
+  // the defaults. Throws std::invalid_argument naming the key, the value and what was expected.
+  static StaticTeOptions from_json(const nlohmann::json& options);
+  nlohmann::json to_json() const;
+};
+
+struct StaticTeOutcome {
+  std::vector<procedures::StaticTePass> passes;  // in acquisition order
+  procedures::StaticTeResult result;
+  int settle_timeouts = 0;  // positions averaged after the maximum settle time ran out
+  // results.json: the `static` list (direction, load_nm, mean_arcmin, p2p_arcmin, std_arcmin,
+  // points), lost_motion, load_shift, settle_timeouts.
+  nlohmann::json to_json() const;
+};
+
+class StaticTeProcedure {
+ public:
+  explicit StaticTeProcedure(StaticTeOptions options);
+  // Throws bench::BenchAborted when the bench trips.
+  StaticTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
+
+ private:
+  StaticTeOptions options_;
+};
+
+}  // namespace wavebench::runs

@@ -1,0 +1,93 @@
+#include "wavebench/runs/option_reader.hpp"
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+
+namespace wavebench::runs {
+
+namespace {
+
+std::string format(double v) {
+  std::ostringstream s;
+  s << v;
+  return s.str();
+}
+
+}  // namespace
+
+OptionReader::OptionReader(const nlohmann::json& options, std::string scope,
+                           std::initializer_list<const char*> known_keys)
+    : options_(options), scope_(std::move(scope)) {
+  if (!options_.is_object()) {
+    throw std::invalid_argument(scope_ + " options: got '" + options_.dump() +
+                                "', expected an object of option keys");
+  }
+  for (const auto& [key, value] : options_.items()) {
+    bool known = false;
+    std::string list;
+    for (const char* k : known_keys) {
+      known = known || key == k;
+      list += list.empty() ? k : std::string(", ") + k;
+    }
+    if (!known) {
+      throw std::invalid_argument(scope_ + ": unknown option '" + key + "' (value '" +
+                                  value.dump() + "'), expected one of: " + list);
+    }
+  }
+}
+
+void OptionReader::fail(const char* key, const nlohmann::json& value,
+                        const std::string& expected) const {
+  throw std::invalid_argument(scope_ + "." + key + ": got '" +
+                              (value.is_string() ? value.get<std::string>() : value.dump()) +
+                              "', expected " + expected);
+}
+
+void OptionReader::number(const char* key, double& value, double min, double max,
+                          bool min_inclusive) {
+  if (!options_.contains(key)) return;
+  const auto& v = options_.at(key);
+  const std::string range = std::string(min_inclusive ? "a number >= " : "a number > ") +
+                            format(min) + (std::isfinite(max) ? " and <= " + format(max) : "");
+  if (!v.is_number()) fail(key, v, range);
+  const double x = v.get<double>();
+  if (!std::isfinite(x) || (min_inclusive ? x < min : x <= min) || x > max) fail(key, v, range);
+  value = x;
+}
+
+void OptionReader::integer(const char* key, int& value, int min, int max) {
+  if (!options_.contains(key)) return;
+  const auto& v = options_.at(key);
+  const std::string range = "an integer from " + std::to_string(min) + " to " + std::to_string(max);
+  if (!v.is_number_integer()) fail(key, v, range);
+  const auto x = v.get<long long>();
+  if (x < min || x > max) fail(key, v, range);
+  value = static_cast<int>(x);
+}
+
+void OptionReader::boolean(const char* key, bool& value) {
+  if (!options_.contains(key)) return;
+  const auto& v = options_.at(key);
+  if (!v.is_boolean()) fail(key, v, "true or false");
+  value = v.get<bool>();
+}
+
+void OptionReader::numbers(const char* key, std::vector<double>& values, double min, double max,
+                           std::size_t min_count) {
+  if (!options_.contains(key)) return;
+  const auto& v = options_.at(key);
+  const std::string what = "a list of at least " + std::to_string(min_count) +
+                           " numbers, each >= " + format(min) + " and <= " + format(max);
+  if (!v.is_array() || v.size() < min_count) fail(key, v, what);
+  std::vector<double> out;
+  for (const auto& item : v) {
+    if (!item.is_number()) fail(key, v, what);
+    const double x = item.get<double>();
+    if (!std::isfinite(x) || x < min || x > max) fail(key, v, what);
+    out.push_back(x);
+  }
+  values = std::move(out);
+}
+
+}  // namespace wavebench::runs

@@ -1,0 +1,197 @@
+#include "wavebench/runs/static_te_procedure.hpp"
+
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "wavebench/runs/option_reader.hpp"
+#include "wavebench/runs/sample_recorder.hpp"
+
+namespace wavebench::runs {
+
+namespace {
+
+using procedures::Direction;
+
+std::string load_label(double load_nm) {
+  std::ostringstream s;
+  s << load_nm << " N·m";
+  return s.str();
+}
+
+// Waits until the output has settled. The detector sees means over short blocks: a raw encoder
+// sample's noise alone would exceed any useful speed or drift threshold.
+bool wait_settled(bench::Bench& bench, const StaticTeOptions& o) {
+  procedures::SettleDetector detector(o.settle);
+  const double t0 = bench.now();
+  detector.start(t0);
+  double block_start = t0, sum = 0;
+  int count = 0;
+  bool have_previous = false;
+  double previous_mean = 0, previous_time = 0;
+  auto state = procedures::SettleState::kSettling;
+  bench.wait_until(
+      [&] {
+        const auto& s = bench.latest_sample();
+        const double t = bench.now();
+        if (s.valid(storage::kThetaOutValid)) {
+          sum += s.theta_out_rad;
+          ++count;
+        }
+        if (t - block_start >= o.settle_block_s - 1e-12 && count > 0) {
+          const double mean = sum / count;
+          if (have_previous) {
+            const double speed = (mean - previous_mean) / (t - previous_time);
+            state = detector.add(t, mean, speed);
+          }
+          have_previous = true;
+          previous_mean = mean;
+          previous_time = t;
+          block_start = t;
+          sum = 0;
+          count = 0;
+        }
+        return state != procedures::SettleState::kSettling;
+      },
+      o.settle.max_settle_s + 2 * o.settle_block_s);
+  return state == procedures::SettleState::kSettled;
+}
+
+procedures::StaticTePoint average_window(bench::Bench& bench, SampleRecorder& recorder,
+                                         double window_s, int position) {
+  recorder.start();
+  bench.wait_for(window_s);
+  recorder.stop();
+  double th_in = 0, th_out = 0, torque = 0;
+  int angles = 0, torques = 0;
+  for (const auto& s : recorder.samples()) {
+    if (s.valid(storage::kThetaInValid) && s.valid(storage::kThetaOutValid)) {
+      th_in += s.theta_in_rad;
+      th_out += s.theta_out_rad;
+      ++angles;
+    }
+    if (s.valid(storage::kTorqueValid)) {
+      torque += s.torque_nm;
+      ++torques;
+    }
+  }
+  if (angles == 0) {
+    throw std::runtime_error("static TE: no sample with both angles valid in the " +
+                             std::to_string(window_s) + " s window at position " +
+                             std::to_string(position));
+  }
+  procedures::StaticTePoint p;
+  p.position = position;
+  p.theta_in_rad = th_in / angles;
+  p.theta_out_rad = th_out / angles;
+  p.torque_nm = torques > 0 ? torque / torques : std::numeric_limits<double>::quiet_NaN();
+  return p;
+}
+
+}  // namespace
+
+StaticTeOptions StaticTeOptions::from_json(const nlohmann::json& options) {
+  StaticTeOptions o;
+  OptionReader r(
+      options, "static",
+      {"positions", "loads_nm", "window_s", "move_speed_rad_s", "run_up_steps", "approach_rad",
+       "approach_speed_rad_s", "brake_settle_s", "settle_block_s", "settle_max_speed_rad_s",
+       "settle_max_drift_rad", "settle_window_s", "max_settle_s"});
+  r.integer("positions", o.positions, 2, 3600);
+  r.numbers("loads_nm", o.loads_nm, 0, 1e4, 1);
+  r.number("window_s", o.window_s, 0, 600, false);
+  r.number("move_speed_rad_s", o.move_speed_rad_s, 0, 1e4, false);
+  r.number("run_up_steps", o.run_up_steps, 0, 1, false);
+  r.number("approach_rad", o.approach_rad, 0, 1e3);
+  r.number("approach_speed_rad_s", o.approach_speed_rad_s, 0, 1e4, false);
+  r.number("brake_settle_s", o.brake_settle_s, 0, 600);
+  r.number("settle_block_s", o.settle_block_s, 0, 10, false);
+  r.number("settle_max_speed_rad_s", o.settle.max_speed_rad_s, 0, 1e3, false);
+  r.number("settle_max_drift_rad", o.settle.max_drift_rad, 0, 1, false);
+  r.number("settle_window_s", o.settle.window_s, 0, 600, false);
+  r.number("max_settle_s", o.settle.max_settle_s, 0, 3600, false);
+  o.settle.validate();
+  return o;
+}
+
+nlohmann::json StaticTeOptions::to_json() const {
+  return {{"positions", positions},
+          {"loads_nm", loads_nm},
+          {"window_s", window_s},
+          {"move_speed_rad_s", move_speed_rad_s},
+          {"run_up_steps", run_up_steps},
+          {"approach_rad", approach_rad},
+          {"approach_speed_rad_s", approach_speed_rad_s},
+          {"brake_settle_s", brake_settle_s},
+          {"settle_block_s", settle_block_s},
+          {"settle_max_speed_rad_s", settle.max_speed_rad_s},
+          {"settle_max_drift_rad", settle.max_drift_rad},
+          {"settle_window_s", settle.window_s},
+          {"max_settle_s", settle.max_settle_s}};
+}
+
+nlohmann::json StaticTeOutcome::to_json() const {
+  nlohmann::json j = procedures::to_json(result);
+  // Issue #5 fixes the keys of a `static` entry; the mean torque stays in every point.
+  for (auto& entry : j["static"]) entry.erase("mean_torque_nm");
+  j["settle_timeouts"] = settle_timeouts;
+  return j;
+}
+
+StaticTeProcedure::StaticTeProcedure(StaticTeOptions options) : options_(std::move(options)) {}
+
+StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
+                                       const ProcedureProgress& progress) const {
+  const auto& o = options_;
+  const auto& sense = bench.description().sense;
+  sense.validate();
+  // One output revolution is N input revolutions; the sign of the output does not matter here
+  // because TE is taken in the model's convention (GearSense).
+  const double step = 2 * std::numbers::pi * sense.ratio / o.positions;
+  const double origin = bench.latest_sample().theta_in_rad;
+  const int total = static_cast<int>(o.loads_nm.size()) * 2 * o.positions;
+  int done = 0;
+
+  SampleRecorder recorder;
+  ObserverRegistration registration(bench, recorder);
+  StaticTeOutcome out;
+  for (double load : o.loads_nm) {
+    bench.set_brake_torque(load);
+    bench.wait_for(o.brake_settle_s);
+    for (Direction d : {Direction::kForward, Direction::kReverse}) {
+      const bool forward = d == Direction::kForward;
+      const std::string phase =
+          std::string("static ") + procedures::direction_name(d) + " " + load_label(load);
+      procedures::StaticTePass pass;
+      pass.direction = d;
+      pass.load_nm = load;
+      // The run-up makes the first position of the pass approached from the pass's side.
+      const double run_up = o.run_up_steps * step;
+      bench.move_input_to(forward ? origin - run_up : origin + (o.positions - 1) * step + run_up,
+                          o.move_speed_rad_s);
+      for (int i = 0; i < o.positions; ++i) {
+        const int k = forward ? i : o.positions - 1 - i;
+        if (progress) progress(phase, static_cast<double>(done) / total);
+        const double target = origin + k * step;
+        if (o.approach_rad > 0) {
+          bench.move_input_to(forward ? target - o.approach_rad : target + o.approach_rad,
+                              o.move_speed_rad_s);
+        }
+        bench.move_input_to(target,
+                            o.approach_rad > 0 ? o.approach_speed_rad_s : o.move_speed_rad_s);
+        if (!wait_settled(bench, o)) ++out.settle_timeouts;
+        pass.points.push_back(average_window(bench, recorder, o.window_s, k));
+        ++done;
+      }
+      out.passes.push_back(std::move(pass));
+    }
+  }
+  bench.set_brake_torque(0);
+  if (progress) progress("static analysis", 1.0);
+  out.result = procedures::analyse_static_te(out.passes, sense);
+  return out;
+}
+
+}  // namespace wavebench::runs

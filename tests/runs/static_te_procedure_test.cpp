@@ -1,0 +1,103 @@
+// Static TE on the plant bench against the truth computed from the unit's own parameters.
+#include "wavebench/runs/static_te_procedure.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "gear_truth.hpp"
+#include "plant_bench.hpp"
+#include "wavebench/simdevices/bench_plant.hpp"
+
+namespace wavebench::runs {
+namespace {
+
+using testing::PlantBench;
+
+struct Stats {
+  double mean = 0, p2p = 0, std = 0;
+};
+
+Stats stats(const std::vector<double>& v) {
+  Stats s;
+  for (double x : v) s.mean += x;
+  s.mean /= static_cast<double>(v.size());
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = std::sqrt(s.std / static_cast<double>(v.size()));
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  s.p2p = *hi - *lo;
+  return s;
+}
+
+TEST(StaticTeProcedure, EveryPassMatchesTheUnitsTruthWithinATenthOfAnArcminute) {
+  const auto gear = simdevices::default_bench_gear();
+  PlantBench bench(gear);
+  bench.connect();
+  StaticTeOptions o;
+  o.positions = 8;
+  o.window_s = 0.2;
+  o.loads_nm = {0, 60};
+  std::vector<std::string> phases;
+  const auto out = StaticTeProcedure(o).run(bench, [&](const std::string& phase, double) {
+    if (phases.empty() || phases.back() != phase) phases.push_back(phase);
+  });
+  ASSERT_EQ(out.passes.size(), 4u);
+  EXPECT_EQ(phases.size(), 5u);  // four passes and the analysis
+  EXPECT_EQ(out.settle_timeouts, 0);
+  const double n = bench.description().sense.ratio;
+  for (std::size_t i = 0; i < out.passes.size(); ++i) {
+    const auto& pass = out.passes[i];
+    const auto& summary = out.result.passes[i];
+    const int travel = pass.direction == procedures::Direction::kForward ? 1 : -1;
+    ASSERT_EQ(pass.points.size(), 8u);
+    std::vector<double> truth;
+    for (const auto& p : pass.points) {
+      truth.push_back(
+          testing::true_static_te(gear, p.theta_in_rad, p.theta_out_rad, p.torque_nm, travel) *
+          testing::kArcminPerRadTruth);
+      // The held torque is the brake's load in the pass's direction.
+      EXPECT_NEAR(p.torque_nm, travel * pass.load_nm * 0.95, 0.5 + 0.1 * pass.load_nm);
+      (void)n;
+    }
+    const auto t = stats(truth);
+    SCOPED_TRACE(std::string(procedures::direction_name(pass.direction)) + " " +
+                 std::to_string(pass.load_nm));
+    EXPECT_NEAR(summary.mean_arcmin, t.mean, 0.1);
+    EXPECT_NEAR(summary.p2p_arcmin, t.p2p, 0.1);
+    EXPECT_NEAR(summary.std_arcmin, t.std, 0.1);
+    std::printf("%s %5.1f N·m: mean %+.3f (truth %+.3f) p2p %.3f (%.3f) std %.3f (%.3f)\n",
+                procedures::direction_name(pass.direction), pass.load_nm, summary.mean_arcmin,
+                t.mean, summary.p2p_arcmin, t.p2p, summary.std_arcmin, t.std);
+  }
+  const auto j = out.to_json();
+  ASSERT_EQ(j["static"].size(), 4u);
+  for (const auto& entry : j["static"]) {
+    std::vector<std::string> keys;
+    for (const auto& [k, v] : entry.items()) keys.push_back(k);
+    std::sort(keys.begin(), keys.end());
+    EXPECT_EQ(keys, (std::vector<std::string>{"direction", "load_nm", "mean_arcmin", "p2p_arcmin",
+                                              "points", "std_arcmin"}));
+  }
+}
+
+TEST(StaticTeOptions, RefuseBadValuesNamingKeyValueAndExpectation) {
+  try {
+    StaticTeOptions::from_json({{"positions", 1}});
+    FAIL();
+  } catch (const std::invalid_argument& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("static.positions"), std::string::npos) << m;
+    EXPECT_NE(m.find("'1'"), std::string::npos) << m;
+    EXPECT_NE(m.find("integer from 2"), std::string::npos) << m;
+  }
+  EXPECT_THROW(StaticTeOptions::from_json({{"loads_nm", {0, -5}}}), std::invalid_argument);
+  EXPECT_THROW(StaticTeOptions::from_json({{"postions", 4}}), std::invalid_argument);
+  const auto o = StaticTeOptions::from_json({{"positions", 4}, {"loads_nm", {0, 30}}});
+  EXPECT_EQ(o.positions, 4);
+  EXPECT_EQ(o.loads_nm, (std::vector<double>{0, 30}));
+  EXPECT_EQ(o.window_s, 0.5);
+}
+
+}  // namespace
+}  // namespace wavebench::runs
