@@ -1,0 +1,46 @@
+#pragma once
+// The plots of a bench run (bench.md §4, §5), each built only when the run folder holds what it
+// needs: static TE against output angle per direction and load; the dynamic TE trace and its
+// spectrum with named peaks; the torque–twist (lost-motion, hysteresis) curve with the fitted
+// three-segment stiffness over it; the twin against the measurement and the residual.
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/report/figure.hpp"
+#include "wavebench/report/run_folder.hpp"
+
+namespace wavebench::report {
+
+// TE of a dynamic record over its steady-speed part (run-in and stop left out).
+struct DynamicTrace {
+  std::vector<double> time_s;            // from the first steady sample
+  std::vector<double> output_angle_deg;  // θ2 from the first steady sample
+  std::vector<double> te_arcsec;
+  double input_speed_hz = 0;  // mean f_H over the steady part
+};
+
+// nullopt when fewer than 16 samples carry both angles or the input never turns steadily.
+std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>& samples,
+                                          const procedures::GearSense& sense);
+
+// `passes`: results.json "static" list. One row per load, forward and reverse in each.
+std::optional<Figure> static_te_figure(const nlohmann::json& passes);
+std::optional<Figure> dynamic_te_figure(const DynamicTrace& trace);
+// Spectrum of the trace (when present) in Hz and in output orders, the analysis' named peaks
+// marked, predicted components above Nyquist marked "aliased" where they fold to. Without a
+// trace, the named peaks alone as stems.
+std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>& trace,
+                                              const nlohmann::json& dynamic, double ratio,
+                                              analysis::SpectrumAnalyser& analyser);
+// Torque against twist from the samples, with the fitted curve of `fit` (results.json
+// lost-motion fit: stiffness k1..k3, t1, t2) drawn over it; branch offsets from the data.
+std::optional<Figure> hysteresis_figure(const std::vector<storage::SyncSample>& samples,
+                                        const procedures::GearSense& sense,
+                                        const nlohmann::json* fit);
+std::optional<Figure> twin_figure(const TwinTrace& twin);
+
+}  // namespace wavebench::report

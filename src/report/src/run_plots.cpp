@@ -1,0 +1,347 @@
+#include "wavebench/report/run_plots.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <map>
+#include <numbers>
+
+#include "wavebench/procedures/dynamic_te_analysis.hpp"
+#include "wavebench/procedures/lost_motion_fit.hpp"
+
+namespace wavebench::report {
+namespace {
+
+using nlohmann::json;
+constexpr double kDegPerRad = 180.0 / std::numbers::pi;
+// Cairo draws a few tens of thousands of points quickly; more only blurs into the same ink.
+constexpr std::size_t kMaxPlotPoints = 20000;
+
+void thin(std::vector<double>& x, std::vector<double>& y) {
+  const std::size_t n = std::min(x.size(), y.size());
+  if (n <= kMaxPlotPoints) return;
+  const std::size_t stride = (n + kMaxPlotPoints - 1) / kMaxPlotPoints;
+  std::size_t k = 0;
+  for (std::size_t i = 0; i < n; i += stride, ++k) {
+    x[k] = x[i];
+    y[k] = y[i];
+  }
+  x.resize(k);
+  y.resize(k);
+}
+
+double median(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+std::string text_of(const json& j, const std::string& key) {
+  const auto it = j.find(key);
+  return it != j.end() && it->is_string() ? it->get<std::string>() : std::string();
+}
+
+std::string load_label(double load_nm) {
+  char buf[48];
+  std::snprintf(buf, sizeof buf, "%g N*m", load_nm);
+  return buf;
+}
+
+}  // namespace
+
+std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>& samples,
+                                          const procedures::GearSense& sense) {
+  std::vector<double> t, th_in, th_out;
+  for (const auto& s : samples) {
+    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) continue;
+    const double ts = 1e-9 * static_cast<double>(s.receive_time_ns);
+    if (!t.empty() && ts <= t.back()) continue;  // out of order: no spectrum can use it
+    t.push_back(ts);
+    th_in.push_back(s.theta_in_rad);
+    th_out.push_back(s.theta_out_rad);
+  }
+  if (t.size() < 16 || !(sense.ratio > 0)) return std::nullopt;
+  // Input speed over windows long enough that a late SYNC's timestamp does not dominate.
+  const std::size_t w = std::clamp<std::size_t>(t.size() / 50, 1, 200);
+  std::vector<double> speed(t.size() - w);
+  for (std::size_t i = 0; i + w < t.size(); ++i) {
+    speed[i] = (th_in[i + w] - th_in[i]) / (t[i + w] - t[i]);
+  }
+  const double steady = median(speed);
+  if (!(std::abs(steady) > 1e-6)) return std::nullopt;
+  const auto is_steady = [&](double v) { return std::abs(v - steady) <= 0.02 * std::abs(steady); };
+  // Windows are averages: the trace starts where a steady window ends and stops where the
+  // last steady window starts, so no sample of the run-in or the stop gets in.
+  std::size_t first = 0;
+  while (first < speed.size() && !is_steady(speed[first])) ++first;
+  std::size_t last = speed.size();
+  while (last > first && !is_steady(speed[last - 1])) --last;
+  first += w;
+  if (last < first + 16) return std::nullopt;
+  DynamicTrace trace;
+  for (std::size_t i = first; i < last; ++i) {
+    trace.time_s.push_back(t[i] - t[first]);
+    trace.output_angle_deg.push_back(
+        (sense.model_output_angle(th_out[i]) - sense.model_output_angle(th_out[first])) *
+        kDegPerRad);
+    trace.te_arcsec.push_back(sense.transmission_error(th_in[i], th_out[i]) *
+                              procedures::kArcsecPerRad);
+  }
+  const double span = t[last - 1] - t[first];
+  trace.input_speed_hz =
+      span > 0 ? std::abs(th_in[last - 1] - th_in[first]) / span / (2 * std::numbers::pi) : 0;
+  return trace;
+}
+
+std::optional<Figure> static_te_figure(const json& passes) {
+  if (!passes.is_array()) return std::nullopt;
+  std::map<double, std::vector<const json*>> by_load;
+  for (const auto& p : passes) {
+    const auto load = number(p, "load_nm");
+    const auto pts = p.find("points");
+    if (!load || pts == p.end() || !pts->is_array() || pts->empty()) continue;
+    by_load[*load].push_back(&p);
+  }
+  if (by_load.empty()) return std::nullopt;
+  Figure fig(static_cast<int>(by_load.size()), 1, "Static TE against output angle");
+  int row = 0;
+  for (const auto& [load, group] : by_load) {
+    Axes& ax = fig.axes(row++, 0);
+    ax.title = "Load " + load_label(load);
+    ax.x_label = "output angle [deg]";
+    ax.y_label = "TE [arcmin]";
+    for (const json* pass : group) {
+      std::vector<std::pair<double, double>> pts;
+      for (const auto& pt : (*pass)["points"]) {
+        const auto a = number(pt, "output_angle_deg");
+        const auto te = number(pt, "te_arcmin");
+        if (a && te) pts.emplace_back(*a, *te);
+      }
+      std::sort(pts.begin(), pts.end());
+      std::vector<double> x, y;
+      for (const auto& [a, te] : pts) {
+        x.push_back(a);
+        y.push_back(te);
+      }
+      const std::string dir = text_of(*pass, "direction");
+      const Color c = palette(dir == "reverse" ? 1 : 0);
+      ax.line(x, y, {}, c);
+      ax.scatter(x, y, dir.empty() ? "pass" : dir, c, 3.0);
+    }
+  }
+  return fig;
+}
+
+std::optional<Figure> dynamic_te_figure(const DynamicTrace& trace) {
+  if (trace.te_arcsec.empty()) return std::nullopt;
+  Figure fig(2, 1, "Dynamic TE");
+  auto x = trace.output_angle_deg, y = trace.te_arcsec;
+  thin(x, y);
+  Axes& angle = fig.axes(0, 0);
+  angle.line(x, y);
+  angle.title = "TE against output angle (steady speed)";
+  angle.x_label = "output angle [deg]";
+  angle.y_label = "TE [arcsec]";
+  auto t = trace.time_s;
+  y = trace.te_arcsec;
+  thin(t, y);
+  Axes& time = fig.axes(1, 0);
+  time.line(t, y, {}, palette(2));
+  time.title = "TE against time";
+  time.x_label = "t [s]";
+  time.y_label = "TE [arcsec]";
+  return fig;
+}
+
+std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>& trace,
+                                              const json& dynamic, double ratio,
+                                              analysis::SpectrumAnalyser& analyser) {
+  const auto peaks_it = dynamic.find("peaks");
+  const bool have_peaks =
+      peaks_it != dynamic.end() && peaks_it->is_array() &&
+      std::any_of(peaks_it->begin(), peaks_it->end(), [](const json& p) {
+        return number(p, "frequency_hz") && number(p, "amplitude_arcsec");
+      });
+  if (!trace && !have_peaks) return std::nullopt;
+  double f_in = number(dynamic, "input_speed_hz").value_or(trace ? trace->input_speed_hz : 0.0);
+  const double f_out = ratio > 0 ? f_in / ratio : 0;
+
+  Figure fig(f_out > 0 ? 2 : 1, 1, "Dynamic TE spectrum");
+  Axes& hz = fig.axes(0, 0);
+  hz.title = "Amplitude spectrum with named peaks";
+  hz.x_label = "frequency [Hz]";
+  hz.y_label = "TE amplitude [arcsec]";
+  hz.log_y = true;
+  // The lines of a TE spectrum sit from 1/rev of the output (a fraction of a hertz) up to
+  // Nyquist: only a log frequency axis shows them all.
+  hz.log_x = true;
+  std::vector<double> f, a;
+  if (trace && trace->time_s.size() >= 16) {
+    const auto s = procedures::spectrum_on_timestamps(trace->time_s, trace->te_arcsec,
+                                                      analysis::Window::kHann, analyser);
+    for (std::size_t i = 1; i < s.frequency_hz.size(); ++i) {  // DC says nothing on a log axis
+      f.push_back(s.frequency_hz[i]);
+      a.push_back(s.amplitude[i]);
+    }
+    hz.line(f, a);
+  }
+  double f_max = f.empty() ? 0 : f.back();
+  if (have_peaks) {
+    std::vector<double> px, py;
+    for (const auto& p : *peaks_it) {
+      const auto fp = number(p, "frequency_hz");
+      const auto ap = number(p, "amplitude_arcsec");
+      if (!fp || !ap || *ap <= 0) continue;
+      px.push_back(*fp);
+      py.push_back(*ap);
+      f_max = std::max(f_max, *fp);
+      std::string label = text_of(p, "name");
+      if (const auto o = number(p, "order_output")) {
+        char buf[40];
+        std::snprintf(buf, sizeof buf, " (%.3g/rev)", *o);
+        label += buf;
+      }
+      hz.annotate(*fp, *ap, label);
+    }
+    if (f.empty()) hz.scatter(px, py, "named peaks", palette(1), 3.0);
+  }
+  if (const auto al = dynamic.find("aliased"); al != dynamic.end() && al->is_array()) {
+    for (const auto& c : *al) {
+      const auto folded = number(c, "folded_hz");
+      const auto amp = number(c, "amplitude_arcsec");
+      if (!folded || !amp || *amp <= 0 || (f_max > 0 && *folded > f_max)) continue;
+      hz.annotate(*folded, *amp, "aliased: " + text_of(c, "name"), false);
+    }
+  }
+  if (f_out > 0) {
+    Axes& ord = fig.axes(1, 0);
+    ord.title = "Against output orders (cycles per output revolution)";
+    ord.x_label = "output order";
+    ord.y_label = "TE amplitude [arcsec]";
+    ord.log_y = true;
+    ord.log_x = true;
+    std::vector<double> o(f.size());
+    std::transform(f.begin(), f.end(), o.begin(), [f_out](double v) { return v / f_out; });
+    if (!o.empty()) ord.line(o, a);
+    if (have_peaks) {
+      std::vector<double> px, py;
+      for (const auto& p : *peaks_it) {
+        const auto op = number(p, "order_output");
+        const auto ap = number(p, "amplitude_arcsec");
+        if (!op || !ap || *ap <= 0) continue;
+        ord.annotate(*op, *ap, text_of(p, "name"));
+        px.push_back(*op);
+        py.push_back(*ap);
+      }
+      if (o.empty()) ord.scatter(px, py, "named peaks", palette(1), 3.0);
+    }
+  }
+  return fig;
+}
+
+std::optional<Figure> hysteresis_figure(const std::vector<storage::SyncSample>& samples,
+                                        const procedures::GearSense& sense, const json* fit) {
+  std::vector<double> twist, torque;
+  for (const auto& s : samples) {
+    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid) ||
+        !s.valid(storage::kTorqueValid)) {
+      continue;
+    }
+    twist.push_back(sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
+                    procedures::kArcminPerRad);
+    torque.push_back(s.torque_nm);
+  }
+  if (twist.size() < 8) return std::nullopt;
+  Figure fig(1, 1, "Lost motion and hysteresis");
+  Axes& ax = fig.axes(0, 0);
+  ax.title = "Torque against twist";
+  ax.x_label = "twist (TE at the output) [arcmin]";
+  ax.y_label = "torque [N*m]";
+  double t_max = 0;
+  for (const double t : torque) t_max = std::max(t_max, std::abs(t));
+  if (fit) {
+    const auto& st = (*fit)["stiffness"];
+    procedures::ThreeSegmentStiffness k;
+    k.k1 = number(st, "k1_nm_per_rad").value_or(0);
+    k.k2 = number(st, "k2_nm_per_rad").value_or(0);
+    k.k3 = number(st, "k3_nm_per_rad").value_or(0);
+    k.t1 = number(st, "t1_nm").value_or(0);
+    k.t2 = number(st, "t2_nm").value_or(0);
+    if (k.k1 > 0 && k.k2 > 0 && k.k3 > 0 && t_max > 0) {
+      // A brake only resists motion, so the torque's sign tells the branch (direction of
+      // travel); each branch's offset is where its points sit about the fitted compliance.
+      std::vector<double> forward, reverse;
+      for (std::size_t i = 0; i < twist.size(); ++i) {
+        const double off = twist[i] - k.twist_at(torque[i]) * procedures::kArcminPerRad;
+        if (torque[i] > 0.02 * t_max) forward.push_back(off);
+        if (torque[i] < -0.02 * t_max) reverse.push_back(off);
+      }
+      const auto branch = [&](const std::vector<double>& offs, double sign, const char* label,
+                              Color color) {
+        if (offs.empty()) return;
+        const double o = median(offs);
+        std::vector<double> x, y;
+        for (int i = 0; i <= 200; ++i) {
+          const double t = sign * t_max * i / 200.0;
+          x.push_back(o + k.twist_at(t) * procedures::kArcminPerRad);
+          y.push_back(t);
+        }
+        ax.line(x, y, label, color).series.back().width = 2.2;
+      };
+      thin(twist, torque);
+      ax.scatter(twist, torque, "measured", palette(0), 1.8);
+      branch(forward, 1, "fit, forward travel", palette(1));
+      branch(reverse, -1, "fit, reverse travel", palette(3));
+      char buf[160];
+      std::snprintf(buf, sizeof buf, "K1 %.3g, K2 %.3g, K3 %.3g N*m/rad; T1 %.3g, T2 %.3g N*m",
+                    k.k1, k.k2, k.k3, k.t1, k.t2);
+      ax.title += std::string(" - ") + buf;
+      return fig;
+    }
+  }
+  thin(twist, torque);
+  ax.scatter(twist, torque, "measured", palette(0), 1.0);
+  return fig;
+}
+
+std::optional<Figure> twin_figure(const TwinTrace& twin) {
+  const std::size_t n = twin.t.size();
+  if (n < 2) return std::nullopt;
+  Figure fig(2, 1, "The twin beside the bench");
+  Axes& te = fig.axes(0, 0);
+  te.title = "Measured and predicted TE";
+  te.x_label = "t [s]";
+  te.y_label = "TE [arcsec]";
+  if (twin.measured_te_arcsec.size() == n) {
+    auto t = twin.t, y = twin.measured_te_arcsec;
+    thin(t, y);
+    te.line(t, y, "measured", palette(0));
+  }
+  if (twin.predicted_te_arcsec.size() == n) {
+    auto t = twin.t, y = twin.predicted_te_arcsec;
+    thin(t, y);
+    te.line(t, y, "twin", palette(1));
+  }
+  std::vector<double> residual = twin.residual_arcsec;
+  if (residual.size() != n && twin.measured_te_arcsec.size() == n &&
+      twin.predicted_te_arcsec.size() == n) {
+    residual.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      residual[i] = twin.measured_te_arcsec[i] - twin.predicted_te_arcsec[i];
+    }
+  }
+  Axes& res = fig.axes(1, 0);
+  res.title = "Residual (measured - twin)";
+  res.x_label = "t [s]";
+  res.y_label = "residual [arcsec]";
+  if (residual.size() == n) {
+    auto t = twin.t;
+    thin(t, residual);
+    res.line(t, residual, {}, palette(2));
+  }
+  if (te.series.empty() && res.series.empty()) return std::nullopt;
+  return fig;
+}
+
+}  // namespace wavebench::report

@@ -1,0 +1,254 @@
+#include "wavebench/report/run_report.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/report/run_plots.hpp"
+#include "wavebench/report/run_tables.hpp"
+#include "wavebench/storage/atomic_file.hpp"
+
+namespace wavebench::report {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+// A plot goes to a temporary name first so that a crash leaves no truncated PNG under the
+// name the page links.
+fs::path write_plot(const Figure& fig, const fs::path& dir, const std::string& name, int height) {
+  const fs::path target = dir / name;
+  const fs::path tmp = dir / ("." + name + ".tmp");
+  fig.write_png(tmp, 1400, height);
+  fs::rename(tmp, target);
+  return target;
+}
+
+void add_table(HtmlPage& page, const HtmlTable& table) {
+  if (!table.rows.empty()) page.table(table);
+}
+
+std::string short_hash(const std::string& hash) {
+  return hash.size() > 16 ? hash.substr(0, 16) + "\u2026" : hash;
+}
+
+std::string sample_facts(const RunFolder& run) {
+  std::uint64_t missed = 0, incomplete = 0;
+  for (const auto& s : run.samples) {
+    missed += s.missed_before;
+    if (!s.complete()) ++incomplete;
+  }
+  return std::to_string(run.samples.size()) + " SYNC samples, " + std::to_string(missed) +
+         " cycles missed, " + std::to_string(incomplete) + " incomplete";
+}
+
+}  // namespace
+
+RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
+  RunFolder run = read_run_folder(run_dir);
+  const fs::path out = out_dir.empty() ? run_dir : out_dir;
+  fs::create_directories(out);
+  RunReport report;
+  analysis::SpectrumAnalyser analyser;
+
+  HtmlPage page("Run " + run.run_id());
+  std::vector<std::pair<std::string, HtmlCell>> facts = {
+      {"run id", {run.run_id(), {}, false}},
+      {"procedure", {run.field("procedure", "\u2013"), {}, false}},
+      {"unit serial", {run.field("unit_serial", "\u2013"), {}, false}},
+      {"status", status_cell(run)},
+  };
+  if (const std::string pass = run.field("pass"); !pass.empty() && pass != "null") {
+    facts.push_back({"pass", {pass, {}, pass == "false"}});
+  }
+  facts.push_back({"started / finished (UTC)",
+                   {run.field("started_at", "\u2013") + " / " + run.field("finished_at", "\u2013"),
+                    {},
+                    false}});
+  facts.push_back({"software version", {run.field("software_version", "\u2013"), {}, false}});
+  facts.push_back({"config hash", {short_hash(run.field("config_hash", "\u2013")), {}, false}});
+  if (!run.samples.empty()) facts.push_back({"samples", {sample_facts(run), {}, false}});
+  if (run.sense) {
+    facts.push_back({"gear ratio N, output sign",
+                     {general(run.sense->ratio) + ", " + std::to_string(run.sense->direction_sign) +
+                          (run.sense_estimated ? " (estimated from the samples)" : ""),
+                      {},
+                      false}});
+  }
+  page.facts(facts);
+  const std::string status = run.field("status");
+  if (status == "aborted" || status == "incomplete") {
+    const std::string reason = run.field("reason", "no reason recorded");
+    page.paragraph("Run " + status + ": " + reason, true);
+  }
+
+  // Static TE.
+  if (const json* passes = static_passes(run.results)) {
+    page.heading("Static TE");
+    HtmlTable t = static_te_table(false);
+    add_static_te_rows(t, run, std::nullopt);
+    add_table(page, t);
+    if (auto fig = static_te_figure(*passes)) {
+      const int rows = fig->rows();
+      report.plots.push_back(write_plot(*fig, out, "static_te.png", 260 + 340 * rows));
+      page.image("static_te.png", "Static TE against output angle");
+    }
+    HtmlTable lm = static_lost_motion_table(false);
+    add_static_lost_motion_rows(lm, run, std::nullopt);
+    add_table(page, lm);
+    HtmlTable shift = load_shift_table(false);
+    add_load_shift_rows(shift, run, std::nullopt);
+    add_table(page, shift);
+  }
+
+  // Dynamic TE.
+  if (const json* dyn = dynamic_section(run.results)) {
+    page.heading("Dynamic TE");
+    HtmlTable t = dynamic_te_table(false);
+    add_dynamic_te_rows(t, run, std::nullopt);
+    add_table(page, t);
+    std::optional<DynamicTrace> trace;
+    if (run.sense && !run.samples.empty()) trace = dynamic_trace(run.samples, *run.sense);
+    if (trace) {
+      if (auto fig = dynamic_te_figure(*trace)) {
+        report.plots.push_back(write_plot(*fig, out, "dynamic_te.png", 900));
+        page.image("dynamic_te.png", "Dynamic TE against output angle and time");
+      }
+    }
+    if (auto fig =
+            dynamic_spectrum_figure(trace, *dyn, run.sense ? run.sense->ratio : 0, analyser)) {
+      report.plots.push_back(write_plot(*fig, out, "spectrum.png", 900));
+      page.image("spectrum.png", "Dynamic TE spectrum with named peaks");
+    }
+    HtmlTable peaks = peaks_table();
+    add_peak_rows(peaks, run);
+    add_table(page, peaks);
+    HtmlTable aliased = aliased_table();
+    add_aliased_rows(aliased, run);
+    add_table(page, aliased);
+  }
+
+  // Lost motion, hysteresis, stiffness.
+  const json* fit = lost_motion_fit(run.results);
+  if (fit) {
+    page.heading("Lost motion, hysteresis and stiffness");
+    HtmlTable t = stiffness_table(false);
+    add_stiffness_rows(t, run, std::nullopt);
+    add_table(page, t);
+  }
+  if ((fit || run.field("procedure") == "lost-motion") && run.sense && !run.samples.empty()) {
+    if (auto fig = hysteresis_figure(run.samples, *run.sense, fit)) {
+      if (!fit) page.heading("Lost motion and hysteresis");
+      report.plots.push_back(write_plot(*fig, out, "hysteresis.png", 800));
+      page.image("hysteresis.png", "Torque against twist with the fitted stiffness");
+    }
+  }
+
+  // The twin.
+  HtmlTable twin = twin_table(false);
+  add_twin_rows(twin, run, std::nullopt, false);
+  std::optional<Figure> twin_fig;
+  if (run.twin) twin_fig = twin_figure(*run.twin);
+  if (!twin.rows.empty() || twin_fig) {
+    page.heading("The twin beside the bench");
+    add_table(page, twin);
+    if (twin_fig) {
+      report.plots.push_back(write_plot(*twin_fig, out, "twin.png", 800));
+      page.image("twin.png", "Twin against measured TE and the residual");
+    }
+  }
+
+  if (!run.notes.empty()) {
+    page.heading("Notes");
+    page.list(run.notes);
+  }
+  report.notes = run.notes;
+  report.html = out / "report.html";
+  storage::write_file_atomically(report.html, page.str());
+  return report;
+}
+
+std::vector<HtmlTable> session_tables(const std::vector<SessionRun>& runs,
+                                      const fs::path& link_base) {
+  HtmlTable overview = runs_table();
+  HtmlTable st = static_te_table(true), lm = static_lost_motion_table(true),
+            shift = load_shift_table(true), dyn = dynamic_te_table(true),
+            stiff = stiffness_table(true), twin = twin_table(true);
+  overview.caption = "Runs";
+  twin.caption = "The twin: residual RMS";
+  for (const auto& r : runs) {
+    const RunFolder run = read_run_folder(r.run_dir, false);
+    HtmlCell cell{run.run_id(), {}, false};
+    if (!link_base.empty()) {
+      const fs::path html = r.report_html.empty() ? r.run_dir / "report.html" : r.report_html;
+      cell.href = fs::absolute(html).lexically_relative(fs::absolute(link_base)).generic_string();
+    }
+    HtmlCell plain{run.run_id(), {}, false};
+    add_run_row(overview, run, cell);
+    add_static_te_rows(st, run, plain);
+    add_static_lost_motion_rows(lm, run, plain);
+    add_load_shift_rows(shift, run, plain);
+    add_dynamic_te_rows(dyn, run, plain);
+    add_stiffness_rows(stiff, run, plain);
+    add_twin_rows(twin, run, plain, true);
+  }
+  std::vector<HtmlTable> out;
+  for (auto* t : {&overview, &st, &lm, &shift, &dyn, &stiff, &twin}) {
+    if (!t->rows.empty()) out.push_back(std::move(*t));
+  }
+  return out;
+}
+
+fs::path write_session_report(const fs::path& dir, const std::vector<fs::path>& run_dirs) {
+  std::vector<SessionRun> runs;
+  for (const auto& d : run_dirs) runs.push_back({d, {}});
+  return write_session_report(dir, runs);
+}
+
+fs::path write_session_report(const fs::path& dir, const std::vector<SessionRun>& runs) {
+  fs::create_directories(dir);
+  HtmlPage page("Bench session: " + std::to_string(runs.size()) + " run" +
+                (runs.size() == 1 ? "" : "s"));
+  for (const auto& t : session_tables(runs, dir)) page.table(t);
+  const fs::path index = dir / "index.html";
+  storage::write_file_atomically(index, page.str());
+  return index;
+}
+
+std::string tables_as_text(const std::vector<HtmlTable>& tables) {
+  std::string out;
+  for (const auto& t : tables) {
+    std::vector<std::vector<std::string>> rows;
+    rows.push_back(t.header);
+    for (const auto& r : t.rows) {
+      std::vector<std::string> cells;
+      for (const auto& c : r) cells.push_back(c.text);
+      rows.push_back(std::move(cells));
+    }
+    std::vector<std::size_t> width;
+    for (const auto& r : rows) {
+      if (width.size() < r.size()) width.resize(r.size(), 0);
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        // Count code points, not bytes, so that "–" does not widen a column.
+        std::size_t n = 0;
+        for (const unsigned char ch : r[i]) n += (ch & 0xC0) != 0x80;
+        width[i] = std::max(width[i], n);
+      }
+    }
+    out += (t.caption.empty() ? std::string("Table") : t.caption) + "\n";
+    for (const auto& r : rows) {
+      std::string line = " ";
+      for (std::size_t i = 0; i < r.size(); ++i) {
+        std::size_t n = 0;
+        for (const unsigned char ch : r[i]) n += (ch & 0xC0) != 0x80;
+        line += " " + r[i] + std::string(width[i] - n, ' ') + " ";
+      }
+      while (!line.empty() && line.back() == ' ') line.pop_back();
+      out += line + "\n";
+    }
+    out += "\n";
+  }
+  return out;
+}
+
+}  // namespace wavebench::report
