@@ -1,7 +1,6 @@
 // Run reports from synthetic run folders written with the storage APIs: the page carries the
 // tables' values and links its plots, the plots are PNG files, a missing or malformed section
 // is left out without an error, text from the run is escaped, an aborted run shows its reason.
-#include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_report.hpp"
 
 #include <gtest/gtest.h>
@@ -11,6 +10,7 @@
 #include <numbers>
 #include <sstream>
 
+#include "wavebench/report/run_plots.hpp"
 #include "wavebench/storage/run_store.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -303,6 +303,52 @@ TEST_F(RunReportTest, LostMotionRunHysteresisWithFittedStiffness) {
   EXPECT_TRUE(is_png(run.dir / "hysteresis.png"));
   // "lost_motion" here is the fit, not a per-position static list: no static tables.
   EXPECT_EQ(html.find("Static TE"), std::string::npos);
+}
+
+TEST_F(RunReportTest, PlotsFromTheResultsAloneWithoutSamples) {
+  // The dynamic results carry their analysed trace, the lost-motion fit its torque-twist
+  // points: the plots need no samples.wbs.
+  json t = json::array(), a = json::array(), te = json::array();
+  for (int i = 0; i < 400; ++i) {
+    t.push_back(i * 0.01);
+    a.push_back(i * 0.9);
+    te.push_back(12 * std::sin(i * 0.9 * kPi / 180) + 3 * std::sin(100 * i * 0.9 * kPi / 180));
+  }
+  json pts = json::array();
+  for (const int travel : {1, -1}) {
+    for (int rung = 1; rung <= 8; ++rung) {
+      const double torque = travel * 5.0 * rung;
+      pts.push_back(
+          {{"torque_nm", torque}, {"twist_rad", torque / 4e4 + travel * 1e-4}, {"travel", travel}});
+    }
+  }
+  const json results = {
+      {"dynamic",
+       {{"mean_arcsec", 0.5},
+        {"p2p_arcsec", 30.0},
+        {"rms_arcsec", 8.9},
+        {"input_speed_hz", 1.6667},
+        {"peaks", {{{"name", "mesh"}, {"frequency_hz", 0.33}, {"amplitude_arcsec", 3.0}}}},
+        {"trace", {{"time_s", t}, {"output_angle_deg", a}, {"te_arcsec", te}}}}},
+      {"lost_motion_fit",
+       {{"lost_motion_arcmin", 0.69},
+        {"lost_motion_torque_nm", 3.0},
+        {"stiffness",
+         {{"k1_nm_per_rad", 4e4},
+          {"k2_nm_per_rad", 4e4},
+          {"k3_nm_per_rad", 4e4},
+          {"t1_nm", 10.0},
+          {"t2_nm", 20.0}}},
+        {"points", pts}}}};
+  const auto run = make_run(*store_, "lost-motion", "SN-9", results, {});
+  const auto rep = write_run_report(run.dir);
+  const std::string html = slurp(rep.html);
+  EXPECT_TRUE(is_png(run.dir / "dynamic_te.png"));
+  EXPECT_TRUE(is_png(run.dir / "spectrum.png"));
+  EXPECT_TRUE(is_png(run.dir / "hysteresis.png"));
+  EXPECT_NE(html.find(">0.69<"), std::string::npos);
+  EXPECT_NE(html.find(">8.90<"), std::string::npos);
+  EXPECT_EQ(rep.plots.size(), 3u);
 }
 
 TEST_F(RunReportTest, MissingAndMalformedSectionsAreLeftOut) {

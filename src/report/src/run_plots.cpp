@@ -94,6 +94,27 @@ std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>
   return trace;
 }
 
+std::optional<DynamicTrace> dynamic_trace(const json& dynamic) {
+  const auto it = dynamic.find("trace");
+  if (it == dynamic.end() || !it->is_object()) return std::nullopt;
+  DynamicTrace trace;
+  const auto column = [&](const char* key, std::vector<double>& out) {
+    const auto c = it->find(key);
+    if (c == it->end() || !c->is_array()) return;
+    for (const auto& v : *c) out.push_back(v.is_number() ? v.get<double>() : std::nan(""));
+  };
+  column("time_s", trace.time_s);
+  column("output_angle_deg", trace.output_angle_deg);
+  column("te_arcsec", trace.te_arcsec);
+  const std::size_t n = trace.te_arcsec.size();
+  if (n < 16 || trace.time_s.size() != n || trace.output_angle_deg.size() != n) return std::nullopt;
+  for (std::size_t i = 1; i < n; ++i) {
+    if (!(trace.time_s[i] > trace.time_s[i - 1])) return std::nullopt;  // no spectrum from it
+  }
+  trace.input_speed_hz = number(dynamic, "input_speed_hz").value_or(0);
+  return trace;
+}
+
 std::optional<Figure> static_te_figure(const json& passes) {
   if (!passes.is_array()) return std::nullopt;
   std::map<double, std::vector<const json*>> by_load;
@@ -158,11 +179,10 @@ std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>&
                                               const json& dynamic, double ratio,
                                               analysis::SpectrumAnalyser& analyser) {
   const auto peaks_it = dynamic.find("peaks");
-  const bool have_peaks =
-      peaks_it != dynamic.end() && peaks_it->is_array() &&
-      std::any_of(peaks_it->begin(), peaks_it->end(), [](const json& p) {
-        return number(p, "frequency_hz") && number(p, "amplitude_arcsec");
-      });
+  const bool have_peaks = peaks_it != dynamic.end() && peaks_it->is_array() &&
+                          std::any_of(peaks_it->begin(), peaks_it->end(), [](const json& p) {
+                            return number(p, "frequency_hz") && number(p, "amplitude_arcsec");
+                          });
   if (!trace && !have_peaks) return std::nullopt;
   double f_in = number(dynamic, "input_speed_hz").value_or(trace ? trace->input_speed_hz : 0.0);
   const double f_out = ratio > 0 ? f_in / ratio : 0;
@@ -240,68 +260,114 @@ std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>&
   return fig;
 }
 
-std::optional<Figure> hysteresis_figure(const std::vector<storage::SyncSample>& samples,
-                                        const procedures::GearSense& sense, const json* fit) {
-  std::vector<double> twist, torque;
+std::optional<TorqueTwistCurve> torque_twist_from_results(const json& fit) {
+  const json* pts = nullptr;
+  for (const char* key : {"points", "record"}) {
+    const auto it = fit.find(key);
+    if (it != fit.end() && it->is_array()) pts = &*it;
+  }
+  if (!pts) return std::nullopt;
+  TorqueTwistCurve c;
+  for (const auto& p : *pts) {
+    const auto torque = number(p, "torque_nm");
+    std::optional<double> twist;
+    if (const auto r = number(p, "twist_rad")) twist = *r * procedures::kArcminPerRad;
+    if (const auto a = number(p, "twist_arcmin")) twist = *a;
+    if (const auto s = number(p, "twist_arcsec")) twist = *s / 60;
+    if (!torque || !twist) continue;
+    const auto travel = number(p, "travel");
+    c.twist_arcmin.push_back(*twist);
+    c.torque_nm.push_back(*torque);
+    c.travel.push_back(travel ? (*travel < 0 ? -1 : 1) : (*torque < 0 ? -1 : 1));
+  }
+  if (c.torque_nm.size() < 2) return std::nullopt;
+  c.twist_label = "twist [arcmin]";
+  return c;
+}
+
+std::optional<TorqueTwistCurve> torque_twist_from_samples(
+    const std::vector<storage::SyncSample>& samples, const procedures::GearSense& sense) {
+  TorqueTwistCurve c;
   for (const auto& s : samples) {
     if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid) ||
         !s.valid(storage::kTorqueValid)) {
       continue;
     }
-    twist.push_back(sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
-                    procedures::kArcminPerRad);
-    torque.push_back(s.torque_nm);
+    c.twist_arcmin.push_back(sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
+                             procedures::kArcminPerRad);
+    c.torque_nm.push_back(s.torque_nm);
+    // A brake only resists motion, so the torque's sign is the direction of travel.
+    c.travel.push_back(s.torque_nm < 0 ? -1 : 1);
   }
-  if (twist.size() < 8) return std::nullopt;
+  if (c.torque_nm.size() < 8) return std::nullopt;
+  c.twist_label = "twist (TE at the output, every sample) [arcmin]";
+  c.from_samples = true;
+  return c;
+}
+
+std::optional<Figure> hysteresis_figure(const TorqueTwistCurve& curve, const json* fit) {
+  const std::size_t n = std::min(curve.twist_arcmin.size(), curve.torque_nm.size());
+  if (n < 2) return std::nullopt;
   Figure fig(1, 1, "Lost motion and hysteresis");
   Axes& ax = fig.axes(0, 0);
   ax.title = "Torque against twist";
-  ax.x_label = "twist (TE at the output) [arcmin]";
+  ax.x_label = curve.twist_label;
   ax.y_label = "torque [N*m]";
   double t_max = 0;
-  for (const double t : torque) t_max = std::max(t_max, std::abs(t));
-  if (fit) {
-    const auto& st = (*fit)["stiffness"];
-    procedures::ThreeSegmentStiffness k;
-    k.k1 = number(st, "k1_nm_per_rad").value_or(0);
-    k.k2 = number(st, "k2_nm_per_rad").value_or(0);
-    k.k3 = number(st, "k3_nm_per_rad").value_or(0);
-    k.t1 = number(st, "t1_nm").value_or(0);
-    k.t2 = number(st, "t2_nm").value_or(0);
-    if (k.k1 > 0 && k.k2 > 0 && k.k3 > 0 && t_max > 0) {
-      // A brake only resists motion, so the torque's sign tells the branch (direction of
-      // travel); each branch's offset is where its points sit about the fitted compliance.
-      std::vector<double> forward, reverse;
-      for (std::size_t i = 0; i < twist.size(); ++i) {
-        const double off = twist[i] - k.twist_at(torque[i]) * procedures::kArcminPerRad;
-        if (torque[i] > 0.02 * t_max) forward.push_back(off);
-        if (torque[i] < -0.02 * t_max) reverse.push_back(off);
-      }
-      const auto branch = [&](const std::vector<double>& offs, double sign, const char* label,
-                              Color color) {
-        if (offs.empty()) return;
-        const double o = median(offs);
-        std::vector<double> x, y;
-        for (int i = 0; i <= 200; ++i) {
-          const double t = sign * t_max * i / 200.0;
-          x.push_back(o + k.twist_at(t) * procedures::kArcminPerRad);
-          y.push_back(t);
-        }
-        ax.line(x, y, label, color).series.back().width = 2.2;
-      };
-      thin(twist, torque);
-      ax.scatter(twist, torque, "measured", palette(0), 1.8);
-      branch(forward, 1, "fit, forward travel", palette(1));
-      branch(reverse, -1, "fit, reverse travel", palette(3));
-      char buf[160];
-      std::snprintf(buf, sizeof buf, "K1 %.3g, K2 %.3g, K3 %.3g N*m/rad; T1 %.3g, T2 %.3g N*m",
-                    k.k1, k.k2, k.k3, k.t1, k.t2);
-      ax.title += std::string(" - ") + buf;
-      return fig;
-    }
+  for (std::size_t i = 0; i < n; ++i) t_max = std::max(t_max, std::abs(curve.torque_nm[i]));
+  auto x = curve.twist_arcmin, y = curve.torque_nm;
+  x.resize(n);
+  y.resize(n);
+  if (curve.from_samples) {
+    thin(x, y);
+    ax.scatter(x, y, "measured", palette(0), 1.8);
+  } else {
+    ax.scatter(x, y, "measured", palette(0), 3.0);
   }
-  thin(twist, torque);
-  ax.scatter(twist, torque, "measured", palette(0), 1.0);
+  if (!fit || t_max <= 0) return fig;
+  const auto& st = (*fit)["stiffness"];
+  procedures::ThreeSegmentStiffness k;
+  k.k1 = number(st, "k1_nm_per_rad").value_or(0);
+  k.k2 = number(st, "k2_nm_per_rad").value_or(0);
+  k.k3 = number(st, "k3_nm_per_rad").value_or(0);
+  k.t1 = number(st, "t1_nm").value_or(0);
+  k.t2 = number(st, "t2_nm").value_or(0);
+  if (!(k.k1 > 0 && k.k2 > 0 && k.k3 > 0)) return fig;
+  // The fit's model per branch: twist = offset + sign(T)·φ(|T|); the offsets are where each
+  // branch's points sit about the fitted compliance.
+  struct Branch {
+    std::vector<double> offsets;
+    double t_lo = 0, t_hi = 0;  // its torque span, with zero torque (the intercept)
+  } forward, reverse;
+  for (std::size_t i = 0; i < n; ++i) {
+    const double t = curve.torque_nm[i];
+    Branch& b = curve.travel[i] > 0 ? forward : reverse;
+    b.offsets.push_back(curve.twist_arcmin[i] - k.twist_at(t) * procedures::kArcminPerRad);
+    b.t_lo = std::min(b.t_lo, t);
+    b.t_hi = std::max(b.t_hi, t);
+  }
+  const auto branch = [&](const Branch& b, const char* label, Color color) {
+    if (b.offsets.empty()) return;
+    const double o = median(b.offsets);
+    std::vector<double> bx, by;
+    for (int i = 0; i <= 200; ++i) {
+      const double t = b.t_lo + (b.t_hi - b.t_lo) * i / 200.0;
+      bx.push_back(o + k.twist_at(t) * procedures::kArcminPerRad);
+      by.push_back(t);
+    }
+    ax.line(bx, by, label, color).series.back().width = 2.2;
+  };
+  branch(forward, "fit, forward travel", palette(1));
+  branch(reverse, "fit, reverse travel", palette(3));
+  char buf[160];
+  std::snprintf(buf, sizeof buf, " - K1 %.3g, K2 %.3g, K3 %.3g N*m/rad; T1 %.3g, T2 %.3g N*m", k.k1,
+                k.k2, k.k3, k.t1, k.t2);
+  ax.title += buf;
+  if (const auto lm = number(*fit, "lost_motion_arcmin")) {
+    const auto at = number(*fit, "lost_motion_torque_nm");
+    std::snprintf(buf, sizeof buf, "lost motion %.2f arcmin at +/-%.3g N*m", *lm, at.value_or(0));
+    ax.annotate(median(forward.offsets.empty() ? reverse.offsets : forward.offsets), 0, buf, false);
+  }
   return fig;
 }
 

@@ -107,10 +107,13 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable t = dynamic_te_table(false);
     add_dynamic_te_rows(t, run, std::nullopt);
     add_table(page, t);
-    std::optional<DynamicTrace> trace;
+    // The analysed trace from the results when they carry it; the steady part of the
+    // samples otherwise. The spectrum in Hz wants every sample when there are samples.
+    std::optional<DynamicTrace> analysed = dynamic_trace(*dyn), trace;
     if (run.sense && !run.samples.empty()) trace = dynamic_trace(run.samples, *run.sense);
-    if (trace) {
-      if (auto fig = dynamic_te_figure(*trace)) {
+    if (!trace) trace = analysed;
+    if (const auto& shown = analysed ? analysed : trace) {
+      if (auto fig = dynamic_te_figure(*shown)) {
         report.plots.push_back(write_plot(*fig, out, "dynamic_te.png", 900));
         page.image("dynamic_te.png", "Dynamic TE against output angle and time");
       }
@@ -136,8 +139,13 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     add_stiffness_rows(t, run, std::nullopt);
     add_table(page, t);
   }
-  if ((fit || run.field("procedure") == "lost-motion") && run.sense && !run.samples.empty()) {
-    if (auto fig = hysteresis_figure(run.samples, *run.sense, fit)) {
+  std::optional<TorqueTwistCurve> curve;
+  if (fit) curve = torque_twist_from_results(*fit);
+  if (!curve && (fit || run.field("procedure") == "lost-motion") && run.sense) {
+    curve = torque_twist_from_samples(run.samples, *run.sense);
+  }
+  if (curve) {
+    if (auto fig = hysteresis_figure(*curve, fit)) {
       if (!fit) page.heading("Lost motion and hysteresis");
       report.plots.push_back(write_plot(*fig, out, "hysteresis.png", 800));
       page.image("hysteresis.png", "Torque against twist with the fitted stiffness");

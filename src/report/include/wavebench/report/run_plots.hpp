@@ -26,6 +26,22 @@ struct DynamicTrace {
 // nullopt when fewer than 16 samples carry both angles or the input never turns steadily.
 std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>& samples,
                                           const procedures::GearSense& sense);
+// The analysed trace the dynamic results carry ("trace": time_s, output_angle_deg,
+// te_arcsec), nullopt when absent or malformed.
+std::optional<DynamicTrace> dynamic_trace(const nlohmann::json& dynamic);
+
+// Torque–twist points: the fit's own points when results.json carries them (a "points" or
+// "record" list of {torque_nm, twist_rad|twist_arcmin|twist_arcsec, travel}), else every
+// sample with TE as the twist.
+struct TorqueTwistCurve {
+  std::vector<double> twist_arcmin, torque_nm;
+  std::vector<int> travel;  // +1 forward, -1 reverse (the torque's sign when not given)
+  std::string twist_label;
+  bool from_samples = false;
+};
+std::optional<TorqueTwistCurve> torque_twist_from_results(const nlohmann::json& fit);
+std::optional<TorqueTwistCurve> torque_twist_from_samples(
+    const std::vector<storage::SyncSample>& samples, const procedures::GearSense& sense);
 
 // `passes`: results.json "static" list. One row per load, forward and reverse in each.
 std::optional<Figure> static_te_figure(const nlohmann::json& passes);
@@ -36,11 +52,10 @@ std::optional<Figure> dynamic_te_figure(const DynamicTrace& trace);
 std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>& trace,
                                               const nlohmann::json& dynamic, double ratio,
                                               analysis::SpectrumAnalyser& analyser);
-// Torque against twist from the samples, with the fitted curve of `fit` (results.json
-// lost-motion fit: stiffness k1..k3, t1, t2) drawn over it; branch offsets from the data.
-std::optional<Figure> hysteresis_figure(const std::vector<storage::SyncSample>& samples,
-                                        const procedures::GearSense& sense,
-                                        const nlohmann::json* fit);
+// Torque against twist, with the fitted curve of `fit` (results.json lost-motion fit:
+// stiffness k1..k3, t1, t2) drawn over it per direction of travel, each branch's offset from
+// its points.
+std::optional<Figure> hysteresis_figure(const TorqueTwistCurve& curve, const nlohmann::json* fit);
 std::optional<Figure> twin_figure(const TwinTrace& twin);
 
 }  // namespace wavebench::report
