@@ -1,0 +1,60 @@
+#pragma once
+// Dynamic TE (bench.md §4): the input at constant speed (profile velocity, default 100 rpm),
+// a run-in, then at least one whole output revolution sampled at the SYNC rate. TE against
+// time and output angle, the spectrum in Hz and in orders, the peaks named (output 1/rev, the
+// mesh, their harmonics, the twin's components) and the twin's components above Nyquist listed
+// as aliased.
+
+#include <nlohmann/json.hpp>
+#include <vector>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/procedures/dynamic_te_analysis.hpp"
+#include "wavebench/procedures/dynamic_te_input.hpp"
+#include "wavebench/runs/procedure_progress.hpp"
+
+namespace wavebench::runs {
+
+struct DynamicTeOptions {
+  double input_rpm = 100;
+  double run_in_s = 2.0;
+  // Recorded, at least one whole revolution. Two by default: with one the order resolution is
+  // a whole order and the Hann window merges the z_F and z_C lines (orders 200 and 202).
+  double output_revolutions = 2.0;
+  double load_nm = 0;  // brake torque during the run
+  int max_peaks = 12;
+  int harmonics = 3;
+
+  static DynamicTeOptions from_json(const nlohmann::json& options);
+  nlohmann::json to_json() const;
+};
+
+struct DynamicTeOutcome {
+  procedures::DynamicTeResult result;
+  std::size_t samples = 0;  // recorded
+  std::size_t skipped_invalid = 0, skipped_out_of_order = 0, missed_cycles = 0;
+  procedures::GearTeeth teeth;
+  // results.json "dynamic": the analysis (peaks, aliased, mean/p2p/RMS) with the sample
+  // counts, the order spectrum and a TE trace decimated for plotting.
+  nlohmann::json to_json() const;
+};
+
+// The components the twin predicts (its TE terms at non-zero frequency), plus the tooth-mesh
+// line U·z_C per wave-generator revolution when the twin has no term there: the kinematics
+// predict it whatever its amplitude.
+std::vector<procedures::PredictedComponent> predicted_components(
+    const model::GearParams& twin, const procedures::GearTeeth& teeth);
+// The teeth from the twin's geometry, or from N (z_F = U·N, z_C = z_F + U) when it has none.
+procedures::GearTeeth gear_teeth(const model::GearParams& twin, double ratio);
+
+class DynamicTeProcedure {
+ public:
+  explicit DynamicTeProcedure(DynamicTeOptions options);
+  // Throws bench::BenchAborted when the bench trips.
+  DynamicTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
+
+ private:
+  DynamicTeOptions options_;
+};
+
+}  // namespace wavebench::runs

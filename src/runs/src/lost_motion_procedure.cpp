@@ -1,0 +1,172 @@
+#include "wavebench/runs/lost_motion_procedure.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numbers>
+#include <sstream>
+#include <stdexcept>
+
+#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/runs/dynamic_te_procedure.hpp"
+#include "wavebench/runs/option_reader.hpp"
+#include "wavebench/runs/sample_recorder.hpp"
+
+namespace wavebench::runs {
+
+namespace {
+
+// Twist and torque averaged over the samples whose output angle lies in [lo, hi].
+procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSample>& samples,
+                                            const procedures::GearSense& sense, double lo,
+                                            double hi, int travel, double torque_nm) {
+  double twist = 0, torque = 0;
+  int angles = 0, torques = 0;
+  for (const auto& s : samples) {
+    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) continue;
+    const double theta2 = sense.model_output_angle(s.theta_out_rad);
+    if (theta2 < lo || theta2 > hi) continue;
+    twist -= sense.transmission_error(s.theta_in_rad, s.theta_out_rad);
+    ++angles;
+    if (s.valid(storage::kTorqueValid)) {
+      torque += sense.direction_sign * s.torque_nm;
+      ++torques;
+    }
+  }
+  if (angles < 8 || torques == 0) {
+    std::ostringstream m;
+    m << "lost motion: only " << angles << " samples in the output window at " << torque_nm
+      << " N·m (" << (travel > 0 ? "forward" : "reverse")
+      << "); expected the output to slip through it (raise run_in_output_rad or the torque "
+         "ladder's cap)";
+    throw std::runtime_error(m.str());
+  }
+  return {torque / torques, twist / angles, travel};
+}
+
+}  // namespace
+
+LostMotionOptions LostMotionOptions::from_json(const nlohmann::json& options) {
+  LostMotionOptions o;
+  OptionReader r(options, "lost-motion",
+                 {"torque_fractions", "torques_nm", "input_speed_rad_s", "run_in_output_rad",
+                  "window_periods", "lost_motion_fraction", "brake_settle_s"});
+  r.numbers("torque_fractions", o.torque_fractions, 0, 2, 4);
+  r.numbers("torques_nm", o.torques_nm, 0, 1e4, 4);
+  r.number("input_speed_rad_s", o.input_speed_rad_s, 0, 1e4, false);
+  r.number("run_in_output_rad", o.run_in_output_rad, 0, 1, false);
+  r.number("window_periods", o.window_periods, 0, 1000, false);
+  r.number("lost_motion_fraction", o.lost_motion_fraction, 0, 1, false);
+  r.number("brake_settle_s", o.brake_settle_s, 0, 600);
+  for (const auto* list : {&o.torque_fractions, &o.torques_nm}) {
+    for (double t : *list) {
+      if (!(t > 0)) {
+        throw std::invalid_argument(
+            std::string("lost-motion.") +
+            (list == &o.torques_nm ? "torques_nm" : "torque_fractions") + ": got " +
+            nlohmann::json(*list).dump() +
+            ", expected torques > 0 (a brake at zero gives no torque sign to fit)");
+      }
+    }
+  }
+  return o;
+}
+
+nlohmann::json LostMotionOptions::to_json() const {
+  return {{"torque_fractions", torque_fractions},   {"torques_nm", torques_nm},
+          {"input_speed_rad_s", input_speed_rad_s}, {"run_in_output_rad", run_in_output_rad},
+          {"window_periods", window_periods},       {"lost_motion_fraction", lost_motion_fraction},
+          {"brake_settle_s", brake_settle_s}};
+}
+
+nlohmann::json LostMotionOutcome::to_json() const {
+  nlohmann::json j = procedures::to_json(result);
+  j["rated_torque_nm"] = rated_torque_nm;
+  j["ladder_nm"] = ladder_nm;
+  nlohmann::json points = nlohmann::json::array();
+  for (const auto& p : record) {
+    points.push_back({{"travel", p.travel > 0 ? "forward" : "reverse"},
+                      {"torque_nm", p.torque_nm},
+                      {"twist_arcmin", p.twist_rad * procedures::kArcminPerRad}});
+  }
+  j["points"] = points;
+  return j;
+}
+
+LostMotionProcedure::LostMotionProcedure(LostMotionOptions options)
+    : options_(std::move(options)) {}
+
+LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
+                                           const ProcedureProgress& progress) const {
+  const auto& o = options_;
+  const auto& d = bench.description();
+  const auto& sense = d.sense;
+  sense.validate();
+  LostMotionOutcome out;
+  out.rated_torque_nm = d.rated_torque_nm;
+  if (o.torques_nm.empty()) {
+    if (!(d.rated_torque_nm > 0)) {
+      throw std::invalid_argument(
+          "lost-motion: the bench's rated_torque is " + std::to_string(d.rated_torque_nm) +
+          "; expected > 0 for a ladder in fractions of it (or give torques_nm)");
+    }
+    for (double f : o.torque_fractions) out.ladder_nm.push_back(f * d.rated_torque_nm);
+  } else {
+    out.ladder_nm = o.torques_nm;
+  }
+  // Stay below the brake's own limit and the safety limit: crossing one trips the bench.
+  double cap = std::numeric_limits<double>::infinity();
+  for (double limit : {d.max_brake_torque_nm, d.limits.max_brake_torque_nm}) {
+    if (limit > 0) cap = std::min(cap, 0.95 * limit);
+  }
+  std::erase_if(out.ladder_nm, [cap](double t) { return t > cap; });
+  std::sort(out.ladder_nm.begin(), out.ladder_nm.end());
+  if (out.ladder_nm.size() < 4) {
+    throw std::invalid_argument("lost-motion: " + std::to_string(out.ladder_nm.size()) +
+                                " ladder torques below the brake limit " + std::to_string(cap) +
+                                " N·m; expected at least 4");
+  }
+  procedures::LostMotionOptions fit;
+  fit.rated_torque_nm = d.rated_torque_nm > 0 ? d.rated_torque_nm : out.ladder_nm.back();
+  fit.lost_motion_fraction = o.lost_motion_fraction;
+  fit.validate();
+
+  const auto teeth = gear_teeth(d.twin_gear, sense.ratio);
+  const double window = o.window_periods * 2 * std::numbers::pi / teeth.z_flex;
+  const double run_in = o.run_in_output_rad;
+  const double start_in = bench.latest_sample().theta_in_rad;
+  const double end_in = start_in + sense.ratio * (2 * run_in + window);
+  const double lo = sense.model_output_angle(bench.latest_sample().theta_out_rad) + run_in;
+  const double hi = lo + window;
+
+  SampleRecorder recorder;
+  ObserverRegistration registration(bench, recorder);
+  std::vector<procedures::TorqueTwistPoint> forward, reverse;
+  for (std::size_t i = 0; i < out.ladder_nm.size(); ++i) {
+    const double t = out.ladder_nm[i];
+    std::ostringstream phase;
+    phase << "lost motion " << t << " N·m";
+    if (progress) progress(phase.str(), static_cast<double>(i) / out.ladder_nm.size());
+    bench.set_brake_torque(t);
+    bench.wait_for(o.brake_settle_s);
+    recorder.start();
+    bench.move_input_to(end_in, o.input_speed_rad_s);
+    recorder.stop();
+    forward.push_back(window_average(recorder.samples(), sense, lo, hi, +1, t));
+    recorder.start();
+    bench.move_input_to(start_in, o.input_speed_rad_s);
+    recorder.stop();
+    reverse.push_back(window_average(recorder.samples(), sense, lo, hi, -1, t));
+  }
+  bench.set_brake_torque(0);
+  if (progress) progress("lost motion fit", 0.98);
+  // The loop in the torque–twist plane: forward branch up the ladder, reverse branch from its
+  // largest torque back down (torque ascending throughout).
+  out.record = forward;
+  out.record.insert(out.record.end(), reverse.rbegin(), reverse.rend());
+  out.result = procedures::analyse_lost_motion(out.record, fit);
+  if (progress) progress("lost motion done", 1.0);
+  return out;
+}
+
+}  // namespace wavebench::runs
