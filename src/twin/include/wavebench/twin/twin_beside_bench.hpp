@@ -1,0 +1,104 @@
+#pragma once
+// The twin beside the bench (bench.md §5): a SampleObserver that hands every SYNC sample to
+// the gear model running on its own thread, driven by the measured input angle and load
+// torque (measured_drive_twin.hpp says how and why dynamically).
+//
+// Usage in a run (runs::execute_run):
+//
+//   twin::TwinBesideBench twin(bench.description().twin_gear, bench.description().sense);
+//   bench.add_observer(twin);
+//   ... run the procedure (BenchAborted or not) ...
+//   bench.remove_observer(twin);
+//   const twin::TwinRunReport& live = twin.finish();          // drains the queue, joins
+//   twin::write_twin_csv(run_dir / "twin.csv", live.points);  // twin_overlay.hpp
+//   results["twin"] = twin::to_json(live);                    // lag, drops, residual
+//   // At the end, with every sample of the run (e.g. read back from samples.wbs):
+//   auto cal = twin::calibrate_twin(description.twin_gear, description.sense, samples,
+//                                   analyser, static_result_or_null);   // twin_calibrator.hpp
+//   twin::write_calibrated_twin_config(run_dir / "twin-calibrated.yaml", cal);
+//   results["twin"]["calibration"] = twin::to_json(cal);  // residual before/after, parameters
+//
+// on_sample() copies six numbers into a bounded lock-free queue and returns; a full queue
+// counts the sample as dropped, it never waits. The constructor throws std::invalid_argument
+// when the twin's gear cannot be simulated or its ratio is not the bench's.
+
+#include <atomic>
+#include <cstdint>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/twin/measured_drive_twin.hpp"
+#include "wavebench/twin/sample_ring.hpp"
+
+namespace wavebench::twin {
+
+struct TwinBesideBenchOptions {
+  std::size_t queue_capacity = 1u << 16;  // samples (65 s at 1 kHz)
+  TwinSolverOptions solver;
+};
+
+// Lag = bench time of the newest sample received − the bench time the twin has reached,
+// measured each time the twin finishes a batch.
+struct TwinLag {
+  double p50_s = 0, p99_s = 0, max_s = 0;
+  std::size_t measurements = 0;
+};
+
+struct TwinRunReport {
+  std::vector<TwinPoint> points;  // one per sample the twin received, in order
+  std::uint64_t samples_received = 0;
+  std::uint64_t samples_dropped = 0;  // queue full
+  std::uint64_t samples_predicted = 0;
+  TwinLag lag;
+  std::int64_t solver_steps = 0;
+  double thread_cpu_s = 0;  // CPU time of the twin's thread
+  std::string error;        // the model failed on the twin's thread (then it stops predicting)
+};
+
+class TwinBesideBench final : public bench::SampleObserver {
+ public:
+  TwinBesideBench(const model::GearParams& twin_gear, const procedures::GearSense& sense,
+                  TwinBesideBenchOptions options = {});
+  ~TwinBesideBench() override;
+  TwinBesideBench(const TwinBesideBench&) = delete;
+  TwinBesideBench& operator=(const TwinBesideBench&) = delete;
+
+  void on_sample(const storage::SyncSample& sample) noexcept override;
+
+  // Stops taking samples, lets the twin finish what is queued, joins its thread. Idempotent.
+  const TwinRunReport& finish();
+
+  std::uint64_t samples_dropped() const noexcept {
+    return dropped_.load(std::memory_order_relaxed);
+  }
+  std::uint64_t samples_received() const noexcept {
+    return received_.load(std::memory_order_relaxed);
+  }
+
+ private:
+  void run() noexcept;
+  void wake() noexcept;
+
+  MeasuredDriveTwin twin_;
+  SampleRing<TwinSampleInput> ring_;
+  std::atomic<std::uint64_t> received_{0};
+  std::atomic<std::uint64_t> dropped_{0};
+  std::atomic<std::int64_t> newest_time_ns_{0};
+  std::atomic<bool> stopping_{false};
+  std::atomic<bool> sleeping_{false};
+  std::atomic<std::uint32_t> signal_{0};
+  std::vector<double> lags_s_;
+  TwinRunReport report_;
+  bool finished_ = false;
+  std::thread thread_;
+};
+
+nlohmann::json to_json(const TwinLag& lag);
+// Counts, lag and solver figures (not the points).
+nlohmann::json to_json(const TwinRunReport& report);
+
+}  // namespace wavebench::twin

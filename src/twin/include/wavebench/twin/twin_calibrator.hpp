@@ -1,0 +1,73 @@
+#pragma once
+// Calibrating the twin to a run (bench.md §5): the twin is replayed over the run's samples,
+// and a linear least-squares fit of the residual (procedures::fit_te_harmonics with extra
+// regressors) corrects, in one solve,
+//   - the TE harmonics on the ordered harmonic basis sin/cos(a·θ1 + b·θ2) (the nominal terms'
+//     orders plus the standard families that the run's angles resolve) and a constant (the
+//     encoder zero offset, written as an order-(0, 0) term),
+//   - the backlash (regressor: the contact flank ±1/2, fitted only when both flanks carry
+//     samples),
+//   - the stiffness (regressor: the twin's spring twist x; k → k/(1 + ε)), fitted only when
+//     the twist varies over the run.
+// TE = −e − Δ with Δ = x + flank·b/2 makes the residual linear in all of them. A static run's
+// estimate_stiffness_backlash() (when given) sets the starting backlash and stiffness. The fit
+// and replay repeat `passes` times (the contact and twist move with the parameters); the
+// calibrated parameters are those of the replay with the lowest residual RMS.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/model/gear_params.hpp"
+#include "wavebench/model/simulation.hpp"
+#include "wavebench/procedures/static_te_statistics.hpp"
+#include "wavebench/procedures/twin_calibration.hpp"
+#include "wavebench/storage/sync_sample.hpp"
+#include "wavebench/twin/measured_drive_twin.hpp"
+
+namespace wavebench::twin {
+
+struct TwinCalibrationOptions {
+  TwinSolverOptions solver;
+  int passes = 2;
+  std::vector<procedures::HarmonicOrder> extra_orders;
+  // An order enters the fit only when its phase a·θ1 + b·θ2 sweeps this much over the run.
+  double min_phase_span_rad = 6.283185307179586;
+  // Backlash is fitted only when each flank holds this fraction of the samples.
+  double min_flank_fraction = 0.05;
+  // Stiffness is fitted only when the spring twist spans this much [rad] (~1 arcsec).
+  double min_twist_span_rad = 5e-6;
+};
+
+struct TwinCalibration {
+  model::GearParams nominal;
+  model::GearParams calibrated;
+  procedures::TwinResidual before;  // nominal twin replayed over the run
+  procedures::TwinResidual after;   // calibrated twin replayed over the same samples
+  std::vector<TwinPoint> replay_after;
+  double stiffness_factor = 1;      // calibrated / nominal stiffness
+  std::vector<std::string> fitted;  // what the fit changed: te_harmonics, offset, backlash, ...
+  std::vector<procedures::HarmonicOrder> orders;  // the harmonic basis used
+  int passes = 0;
+};
+
+// Throws std::invalid_argument when fewer samples than unknowns carry a measured TE.
+TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
+                               std::span<const storage::SyncSample> samples,
+                               analysis::SpectrumAnalyser& analyser,
+                               const procedures::StaticTeResult* static_run = nullptr,
+                               const TwinCalibrationOptions& options = {});
+
+// The calibrated gear as a twin case (configs/twin schema, loadable by load_twin_case), with
+// the residual before/after in its header comment. Written atomically.
+void write_calibrated_twin_config(const std::filesystem::path& file,
+                                  const TwinCalibration& calibration,
+                                  const model::SimulationOptions& solver = {});
+
+// residual_before/after (mean, RMS, p2p arcsec), backlash, stiffness factor, the TE terms.
+nlohmann::json to_json(const TwinCalibration& calibration);
+
+}  // namespace wavebench::twin
