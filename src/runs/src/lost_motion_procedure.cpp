@@ -85,7 +85,7 @@ nlohmann::json LostMotionOutcome::to_json() const {
   j["ladder_nm"] = ladder_nm;
   nlohmann::json points = nlohmann::json::array();
   for (const auto& p : record) {
-    points.push_back({{"travel", p.travel > 0 ? "forward" : "reverse"},
+    points.push_back({{"travel", p.travel > 0 ? 1 : -1},
                       {"torque_nm", p.torque_nm},
                       {"twist_arcmin", p.twist_rad * procedures::kArcminPerRad}});
   }

@@ -1,0 +1,174 @@
+// execute_run on the plant bench: the run folder, samples on disk as acquired, results.json,
+// pass/fail, an operator stop from another thread, and bad requests that create nothing.
+#include "wavebench/runs/run_executor.hpp"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <filesystem>
+#include <fstream>
+#include <thread>
+
+#include "plant_bench.hpp"
+#include "wavebench/simdevices/bench_plant.hpp"
+#include "wavebench/storage/sample_log.hpp"
+
+namespace wavebench::runs {
+namespace {
+
+namespace fs = std::filesystem;
+
+class RunExecutorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    root_ = fs::temp_directory_path() /
+            ("wavebench-runs-" + std::to_string(::getpid()) + "-" +
+             ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(root_);
+    store_ = std::make_unique<storage::RunStore>(root_, "test");
+  }
+  void TearDown() override {
+    store_.reset();
+    fs::remove_all(root_);
+  }
+  fs::path root_;
+  std::unique_ptr<storage::RunStore> store_;
+};
+
+RunRequest small_static() {
+  RunRequest r;
+  r.procedure = "static";
+  r.options = {{"positions", 4},
+               {"loads_nm", {0, 30}},
+               {"window_s", 0.1},
+               {"limits", {{"static_p2p_arcmin", 20.0}}},
+               {"calibrate_twin", false}};
+  r.config_text = "name: plant\n";
+  r.twin = false;
+  r.report = false;
+  return r;
+}
+
+TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  const std::uint64_t before = bench.acquisition_stats().samples;
+  std::vector<RunProgress> progress;
+  const auto out = execute_run(bench, *store_, small_static(),
+                               [&](const RunProgress& p) { progress.push_back(p); });
+  EXPECT_EQ(out.status, storage::RunStatus::kComplete);
+  ASSERT_FALSE(progress.empty());
+  EXPECT_EQ(progress.back().fraction, 1.0);
+  EXPECT_EQ(progress.front().run_id, out.run_id);
+
+  const auto log = storage::read_sample_log(store_->paths(out.run_id).samples);
+  EXPECT_EQ(log.samples.size(), bench.acquisition_stats().samples - before);
+  EXPECT_EQ(log.torn_tail_bytes, 0u);
+
+  std::ifstream in(store_->paths(out.run_id).results);
+  const auto results = nlohmann::json::parse(in);
+  ASSERT_EQ(results["static"].size(), 4u);
+  EXPECT_EQ(results["static"][0]["points"].size(), 4u);
+  EXPECT_EQ(results["acquisition"]["samples_logged"], log.samples.size());
+  EXPECT_EQ(results["pass"], true);
+  EXPECT_EQ(results["gear"]["ratio"], 100.0);
+  const auto record = store_->find_run(out.run_id);
+  ASSERT_TRUE(record);
+  EXPECT_EQ(record->status, storage::RunStatus::kComplete);
+  ASSERT_TRUE(record->pass);
+  EXPECT_TRUE(*record->pass);
+  EXPECT_EQ(record->procedure, "static");
+  EXPECT_EQ(record->unit_serial, "PLANT-TEST");
+}
+
+TEST_F(RunExecutorTest, ATightLimitFailsTheRun) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  auto request = small_static();
+  request.options["limits"] = {{"static_p2p_arcmin", 1.0}};
+  const auto out = execute_run(bench, *store_, request);
+  EXPECT_EQ(out.results["pass"], false);
+  const auto record = store_->find_run(out.run_id);
+  ASSERT_TRUE(record && record->pass);
+  EXPECT_FALSE(*record->pass);
+}
+
+TEST_F(RunExecutorTest, AnOperatorStopFromAnotherThreadAbortsWithTheReasonAndKeepsTheSamples) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  std::atomic<bool> reverse_started{false};
+  std::thread operator_thread([&] {
+    while (!reverse_started) std::this_thread::yield();
+    bench.request_stop("operator stop");
+  });
+  const auto out = execute_run(bench, *store_, small_static(), [&](const RunProgress& p) {
+    if (p.phase.find("reverse") != std::string::npos) reverse_started = true;
+  });
+  operator_thread.join();
+  EXPECT_EQ(out.status, storage::RunStatus::kAborted);
+  EXPECT_EQ(out.reason, "operator stop");
+  EXPECT_EQ(bench.state(), bench::BenchLifecycle::kFault);
+  EXPECT_EQ(bench.brake_setting(), 0.0);  // safe state
+
+  const auto record = store_->find_run(out.run_id);
+  ASSERT_TRUE(record);
+  EXPECT_EQ(record->status, storage::RunStatus::kAborted);
+  EXPECT_EQ(record->reason, "operator stop");
+  const auto log = storage::read_sample_log(store_->paths(out.run_id).samples);
+  EXPECT_GT(log.samples.size(), 1000u);  // the whole forward pass and more
+  EXPECT_FALSE(log.corrupt_record);
+  EXPECT_EQ(out.results["status"], "aborted");
+  EXPECT_EQ(out.results["reason"], "operator stop");
+  EXPECT_FALSE(out.results.contains("static"));
+}
+
+TEST_F(RunExecutorTest, ASafetyTripMidRunIsAnAbortNotAnException) {
+  testing::PlantBenchOptions o;
+  o.trip_at_s = 3.0;
+  o.trip_reason = "over-torque: 151 N·m > 150 N·m";
+  testing::PlantBench bench(simdevices::default_bench_gear(), o);
+  bench.connect();
+  RunRequest r = small_static();
+  r.procedure = "lost-motion";
+  r.options = nlohmann::json::object();
+  const auto out = execute_run(bench, *store_, r);
+  EXPECT_EQ(out.status, storage::RunStatus::kAborted);
+  EXPECT_EQ(out.reason, o.trip_reason);
+  const auto log = storage::read_sample_log(store_->paths(out.run_id).samples);
+  EXPECT_NEAR(static_cast<double>(log.samples.size()), 3000, 5);
+}
+
+TEST_F(RunExecutorTest, BadRequestsNameTheKeyAndCreateNothing) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  const auto expect_refused = [&](RunRequest r, const std::string& needle) {
+    try {
+      execute_run(bench, *store_, r);
+      ADD_FAILURE() << "accepted " << r.options.dump();
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  auto r = small_static();
+  r.options["positions"] = "many";
+  expect_refused(r, "static.positions");
+  r = small_static();
+  r.procedure = "wobble";
+  expect_refused(r, "procedure");
+  r = small_static();
+  r.options["limits"] = {{"p2p", 3}};
+  expect_refused(r, "limits.p2p");
+  r = small_static();
+  r.procedure = "dynamic";
+  r.options = {{"input_rpm", -5}};
+  expect_refused(r, "dynamic.input_rpm");
+  EXPECT_TRUE(store_->list_runs().empty());
+  std::size_t entries = 0;
+  for (const auto& e : fs::directory_iterator(root_)) {
+    if (e.is_directory()) ++entries;
+  }
+  EXPECT_EQ(entries, 0u);
+}
+
+}  // namespace
+}  // namespace wavebench::runs
