@@ -1,8 +1,108 @@
-// Placeholder until the owner of this area lands its subcommands (issue #5).
+// `wavebench status|start|abort|stop|reset|runs|export`: the CLI as the daemon's client. The
+// work is in wavebench/daemon/client_commands.hpp; this file is the command line.
+#include <cstdlib>
+#include <iostream>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
 #include "commands.hpp"
+#include "wavebench/daemon/client_commands.hpp"
 
 namespace wavebench::cli {
+namespace {
 
-void register_daemon_client_commands(CLI::App& /*app*/, ExitStatus& /*status*/) {}
+struct DaemonClientOptions {
+  std::string daemon_url;
+  std::string token_file;
+
+  daemon::ClientContext context() const {
+    daemon::ClientContext ctx;
+    ctx.daemon_url = daemon_url;
+    ctx.token_file = token_file;
+    ctx.out = &std::cout;
+    ctx.err = &std::cerr;
+    return ctx;
+  }
+};
+
+std::string default_daemon_url() {
+  if (const char* env = std::getenv("WAVEBENCH_DAEMON"); env && *env) return env;
+  return "http://127.0.0.1:8470";
+}
+
+CLI::App* daemon_subcommand(CLI::App& app, const std::string& name, const std::string& help,
+                            const std::shared_ptr<DaemonClientOptions>& options) {
+  auto* sub = app.add_subcommand(name, help);
+  sub->add_option("--daemon", options->daemon_url,
+                  "the daemon's API (default $WAVEBENCH_DAEMON or http://127.0.0.1:8470)");
+  sub->add_option("--token-file", options->token_file,
+                  "the daemon's token (default $WAVEBENCH_TOKEN_FILE or "
+                  "~/.config/wavebench/daemon.token)");
+  return sub;
+}
+
+}  // namespace
+
+void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
+  auto options = std::make_shared<DaemonClientOptions>();
+  options->daemon_url = default_daemon_url();
+
+  daemon_subcommand(app, "status", "the daemon's state, bench, current run and fault", options)
+      ->callback([options, &status] { status.code = daemon::client_status(options->context()); });
+
+  struct StartArgs {
+    std::string procedure;
+    std::vector<std::string> options;
+    bool wait = false;
+  };
+  auto start_args = std::make_shared<StartArgs>();
+  auto* start = daemon_subcommand(app, "start", "start a run on the daemon's bench", options);
+  start->add_option("procedure", start_args->procedure, "static, dynamic or lost-motion")
+      ->required()
+      ->check(CLI::IsMember({"static", "dynamic", "lost-motion"}));
+  start->add_option("--option", start_args->options,
+                    "procedure option KEY=VALUE (repeatable; VALUE as JSON where it parses, e.g. "
+                    "positions=4 loads_nm=[0,60])");
+  start->add_flag("--wait", start_args->wait,
+                  "follow the run's progress and exit 0 only when it completes");
+  start->callback([options, start_args, &status] {
+    status.code = daemon::client_start(options->context(), start_args->procedure,
+                                       start_args->options, start_args->wait);
+  });
+
+  daemon_subcommand(app, "abort", "abort the active run (the bench goes to its safe state)",
+                    options)
+      ->callback([options, &status] { status.code = daemon::client_abort(options->context()); });
+  daemon_subcommand(app, "stop", "put the bench in its safe state (operator stop)", options)
+      ->callback([options, &status] { status.code = daemon::client_stop(options->context()); });
+  daemon_subcommand(app, "reset", "clear the bench's fault (or retry connecting it)", options)
+      ->callback([options, &status] { status.code = daemon::client_reset(options->context()); });
+
+  auto filter = std::make_shared<daemon::RunsFilter>();
+  auto* runs = daemon_subcommand(app, "runs", "list the runs in the daemon's index", options);
+  runs->add_option("--procedure", filter->procedure, "only this procedure");
+  runs->add_option("--status", filter->status, "running, complete, aborted or incomplete");
+  runs->add_option("--unit", filter->unit, "only this unit serial");
+  runs->add_option("--limit", filter->limit, "newest N runs");
+  runs->callback([options, filter, &status] {
+    status.code = daemon::client_runs(options->context(), *filter);
+  });
+
+  struct ExportArgs {
+    std::string run_id, out, format = "csv";
+  };
+  auto export_args = std::make_shared<ExportArgs>();
+  auto* exp = daemon_subcommand(app, "export", "copy a run's samples and results", options);
+  exp->add_option("run_id", export_args->run_id, "run id (see 'wavebench runs')")->required();
+  exp->add_option("--out", export_args->out, "output folder (default ./RUN_ID)");
+  exp->add_option("--format", export_args->format, "samples as csv or json")
+      ->check(CLI::IsMember({"csv", "json"}));
+  exp->callback([options, export_args, &status] {
+    status.code = daemon::client_export(options->context(), export_args->run_id, export_args->out,
+                                        export_args->format);
+  });
+}
 
 }  // namespace wavebench::cli

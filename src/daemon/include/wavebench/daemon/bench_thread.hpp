@@ -1,0 +1,129 @@
+#pragma once
+// The thread that owns the bench (bench.hpp: one bench thread makes every call but the
+// thread-safe ones). It builds and connects the bench, runs one run at a time through a
+// RunLauncher, keeps a real-clock bench's event loop turning between runs, and answers the
+// API threads with snapshots of its state.
+
+#include <chrono>
+#include <condition_variable>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <thread>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/daemon/daemon_state.hpp"
+#include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/storage/run_store.hpp"
+
+namespace wavebench::daemon {
+
+// Called on the bench thread. Throws std::invalid_argument for a bad config.
+using BenchFactory = std::function<std::unique_ptr<bench::Bench>()>;
+
+struct ActiveRun {
+  std::string run_id;  // empty until the executor has created the run
+  std::string procedure;
+  std::string phase;
+  double fraction = 0;
+};
+
+struct FinishedRun {
+  std::string run_id;
+  std::string status;  // complete, aborted, or "failed" when the executor threw
+  std::string reason;
+};
+
+struct BenchStatus {
+  DaemonState state = DaemonState::kIdle;
+  bench::BenchLifecycle lifecycle = bench::BenchLifecycle::kUnconfigured;
+  std::string fault_reason;
+  std::string connect_error;  // why the bench is idle, when connecting failed
+  std::optional<bench::BenchDescription> description;
+  std::optional<ActiveRun> run;
+  std::optional<FinishedRun> last_run;
+  std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
+};
+
+// What POST /api/runs gets back.
+struct StartOutcome {
+  enum class Kind {
+    kStarted,     // run_id set (empty when the executor had not named it within the wait)
+    kBadRequest,  // detail names the option
+    kRejected,    // the bench cannot take a run now (busy, fault, not connected)
+    kFailed,      // the executor failed before the run started
+  };
+  Kind kind = Kind::kStarted;
+  std::string run_id;
+  std::string detail;
+};
+
+class BenchThread {
+ public:
+  // `store` and `launcher` outlive the thread. `config_text` goes into every run request.
+  BenchThread(BenchFactory factory, storage::RunStore& store, RunLauncher& launcher,
+              std::string config_text, LiveSampleBuffer& live);
+  ~BenchThread();
+  BenchThread(const BenchThread&) = delete;
+  BenchThread& operator=(const BenchThread&) = delete;
+
+  // Starts the thread, builds the bench and tries to connect it; returns when that is done.
+  // Rethrows what the factory threw (a bad config); a failed connect leaves the daemon idle
+  // with connect_error set.
+  void start();
+  // From any thread. Queues the run and waits (up to `wait`) until the executor has named it
+  // or refused it.
+  StartOutcome start_run(runs::RunRequest request,
+                         std::chrono::milliseconds wait = std::chrono::seconds(30));
+  // Trips the bench with `reason` when a run is active; returns whether one was.
+  bool abort_run(const std::string& reason);
+  // Trips the bench with `reason` (safe state) whether or not a run is active; false when no
+  // bench is there.
+  bool stop(const std::string& reason);
+  // Clears a fault or retries a failed connect, on the bench thread; returns the error text
+  // (empty when the bench is ready afterwards).
+  std::string reset(std::chrono::milliseconds wait = std::chrono::seconds(30));
+  BenchStatus status() const;
+  // Trips the bench with `reason` if a run is active, lets the run finish aborted, puts the
+  // bench in its safe state, disconnects and joins. Idempotent.
+  void shutdown(const std::string& reason);
+
+ private:
+  class StatsObserver;
+  struct Job;
+
+  void thread_main();
+  void connect_bench();
+  void run_job(Job& job);
+  void reset_job(Job& job);
+  void idle_until_job(std::unique_lock<std::mutex>& lock);
+  void trip(const std::string& reason);
+  void refresh_stats_on_bench_thread();
+
+  BenchFactory factory_;
+  storage::RunStore& store_;
+  RunLauncher& launcher_;
+  std::string config_text_;
+  LiveSampleBuffer& live_;
+  std::unique_ptr<StatsObserver> stats_observer_;
+
+  mutable std::mutex mutex_;
+  std::condition_variable wake_;
+  std::deque<std::shared_ptr<Job>> jobs_;
+  bool stopping_ = false;
+  bool started_ = false;
+  bench::Bench* bench_ = nullptr;  // set and cleared under mutex_; used only on the bench thread
+  std::optional<bench::BenchDescription> description_;
+  std::string connect_error_;
+  std::optional<ActiveRun> run_;
+  bool run_queued_ = false;
+  std::optional<FinishedRun> last_run_;
+  std::optional<bench::AcquisitionStats> acquisition_;
+  std::thread thread_;
+};
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,43 @@
+#pragma once
+// What `wavebench status|start|abort|stop|reset|runs|export` do against the daemon, apart
+// from the command-line parsing (src/cli/daemon_client_commands.cpp), so tests can run them.
+// Each returns the exit status: 0 ok, 1 runtime failure (no daemon, refused, run not
+// complete), 2 bad input.
+
+#include <chrono>
+#include <filesystem>
+#include <optional>
+#include <ostream>
+#include <string>
+#include <vector>
+
+namespace wavebench::daemon {
+
+struct ClientContext {
+  std::string daemon_url = "http://127.0.0.1:8470";
+  std::filesystem::path token_file;  // empty: default_token_file()
+  std::ostream* out = nullptr;       // results
+  std::ostream* err = nullptr;       // errors and progress
+  std::chrono::milliseconds poll_interval{200};
+};
+
+int client_status(const ClientContext& ctx);
+// options: "key=value"; a value that parses as JSON is sent as such (4, [0,60], true), any
+// other as a string.
+int client_start(const ClientContext& ctx, const std::string& procedure,
+                 const std::vector<std::string>& options, bool wait);
+int client_abort(const ClientContext& ctx);
+int client_stop(const ClientContext& ctx);
+int client_reset(const ClientContext& ctx);
+
+struct RunsFilter {
+  std::optional<std::string> procedure, status, unit;
+  int limit = 0;
+};
+int client_runs(const ClientContext& ctx, const RunsFilter& filter);
+// Writes samples.csv (format "csv") or samples.json ("json"), results.json and run.json into
+// out_dir (default ./RUN_ID).
+int client_export(const ClientContext& ctx, const std::string& run_id,
+                  const std::filesystem::path& out_dir, const std::string& format);
+
+}  // namespace wavebench::daemon

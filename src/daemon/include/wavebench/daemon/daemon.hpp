@@ -1,0 +1,69 @@
+#pragma once
+// wavebenchd as an object: the run store (recovered at start), the bench thread, the API and
+// its HTTP server on its own threads. main() adds the config, the token file, logging and
+// signals; tests run it in-process on an ephemeral port.
+
+#include <boost/asio/io_context.hpp>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "wavebench/daemon/bench_thread.hpp"
+#include "wavebench/daemon/daemon_api.hpp"
+#include "wavebench/daemon/http_server.hpp"
+#include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/storage/run_store.hpp"
+
+namespace wavebench::daemon {
+
+inline constexpr unsigned short kDefaultPort = 8470;
+
+struct DaemonSetup {
+  BenchFactory bench_factory;
+  std::unique_ptr<RunLauncher> launcher;
+  std::filesystem::path runs_dir;
+  std::string listen_address = "127.0.0.1";
+  unsigned short port = kDefaultPort;  // 0 = ephemeral
+  std::string token;
+  std::string config_text;  // the bench config, copied into every run
+  std::string software_version = WAVEBENCH_SOFTWARE_VERSION;
+  int api_threads = 2;  // a start request waits for its run id; others keep being answered
+  std::size_t live_capacity = 8192;
+};
+
+class Daemon {
+ public:
+  // Opens the run store, which marks runs left running by a killed daemon as incomplete.
+  explicit Daemon(DaemonSetup setup);
+  ~Daemon();
+  Daemon(const Daemon&) = delete;
+  Daemon& operator=(const Daemon&) = delete;
+
+  // Builds and connects the bench, then listens. Throws what the bench factory threw (a bad
+  // config) or std::runtime_error when it cannot listen.
+  void start();
+  unsigned short port() const;
+  // Safe state, the active run finished aborted with `reason`, bench disconnected, server
+  // stopped. Idempotent.
+  void shutdown(const std::string& reason);
+
+  storage::RunStore& store() { return store_; }
+  BenchThread& bench_thread() { return bench_thread_; }
+  const DaemonApi& api() const { return api_; }
+
+ private:
+  DaemonSetup setup_;
+  storage::RunStore store_;
+  LiveSampleBuffer live_;
+  BenchThread bench_thread_;
+  DaemonApi api_;
+  boost::asio::io_context io_;
+  std::unique_ptr<HttpServer> server_;
+  std::vector<std::thread> api_threads_;
+  bool shut_down_ = false;
+};
+
+}  // namespace wavebench::daemon

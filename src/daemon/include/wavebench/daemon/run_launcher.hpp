@@ -1,0 +1,27 @@
+#pragma once
+// How the bench thread starts a run. The daemon calls runs::execute_run through this seam so
+// that its own logic can be tested with a stand-in.
+
+#include <memory>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/storage/run_store.hpp"
+
+namespace wavebench::daemon {
+
+class RunLauncher {
+ public:
+  virtual ~RunLauncher() = default;
+  // Same contract as runs::execute_run: std::invalid_argument for a bad request (nothing
+  // created), a bench trip returns an aborted outcome.
+  virtual runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                                  const runs::RunRequest& request,
+                                  const runs::ProgressSink& progress) = 0;
+};
+
+// The real one, runs::execute_run (src/executor_run_launcher.cpp, built with the executable:
+// the library itself does not link the run executor).
+std::unique_ptr<RunLauncher> make_executor_run_launcher();
+
+}  // namespace wavebench::daemon

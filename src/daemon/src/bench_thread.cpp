@@ -1,0 +1,352 @@
+#include "wavebench/daemon/bench_thread.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <exception>
+#include <future>
+#include <stdexcept>
+
+namespace wavebench::daemon {
+
+// Keeps the acquisition statistics fresh: they may only be read on the bench thread, which is
+// inside the executor during a run, so the sample callback samples them now and then.
+class BenchThread::StatsObserver : public bench::SampleObserver {
+ public:
+  explicit StatsObserver(BenchThread& owner) : owner_(owner) {}
+  void on_sample(const storage::SyncSample& /*sample*/) noexcept override {
+    if (++count_ % kEvery != 0) return;
+    owner_.refresh_stats_on_bench_thread();
+  }
+
+ private:
+  static constexpr std::uint64_t kEvery = 100;
+  BenchThread& owner_;
+  std::uint64_t count_ = 0;
+};
+
+struct BenchThread::Job {
+  enum class Kind { kRun, kReset };
+  Kind kind = Kind::kRun;
+  runs::RunRequest request;
+  std::promise<StartOutcome> started;  // kRun: fulfilled once
+  bool started_set = false;
+  std::promise<std::string> reset_done;  // kReset: error text
+
+  void settle(StartOutcome outcome) {
+    if (started_set) return;
+    started_set = true;
+    started.set_value(std::move(outcome));
+  }
+};
+
+BenchThread::BenchThread(BenchFactory factory, storage::RunStore& store, RunLauncher& launcher,
+                         std::string config_text, LiveSampleBuffer& live)
+    : factory_(std::move(factory)),
+      store_(store),
+      launcher_(launcher),
+      config_text_(std::move(config_text)),
+      live_(live),
+      stats_observer_(std::make_unique<StatsObserver>(*this)) {}
+
+BenchThread::~BenchThread() {
+  shutdown("daemon shutting down");
+}
+
+void BenchThread::start() {
+  std::promise<void> built;
+  auto built_future = built.get_future();
+  {
+    std::lock_guard lock(mutex_);
+    if (started_) throw std::logic_error("BenchThread::start called twice");
+    started_ = true;
+  }
+  thread_ = std::thread([this, &built] {
+    std::unique_ptr<bench::Bench> bench;
+    try {
+      bench = factory_();
+      if (!bench) throw std::runtime_error("the bench factory returned no bench");
+    } catch (...) {
+      built.set_exception(std::current_exception());
+      return;
+    }
+    {
+      std::lock_guard lock(mutex_);
+      bench_ = bench.get();
+      description_ = bench->description();
+    }
+    connect_bench();
+    built.set_value();
+    thread_main();
+    bench->disconnect();
+    std::lock_guard lock(mutex_);
+    bench_ = nullptr;
+    // The bench is destroyed when `bench` leaves scope, after the pointer is gone.
+  });
+  try {
+    built_future.get();
+  } catch (...) {
+    thread_.join();
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    throw;
+  }
+}
+
+void BenchThread::connect_bench() {
+  try {
+    bench_->connect();
+    bench_->add_observer(live_);
+    bench_->add_observer(*stats_observer_);
+    refresh_stats_on_bench_thread();
+    std::lock_guard lock(mutex_);
+    connect_error_.clear();
+    spdlog::info("bench '{}' connected (unit {}, {} clock)", description_->name,
+                 description_->unit_serial, description_->simulated_clock ? "simulated" : "real");
+  } catch (const std::exception& e) {
+    spdlog::error("bench '{}' did not connect: {}", description_->name, e.what());
+    bench_->disconnect();
+    std::lock_guard lock(mutex_);
+    connect_error_ = e.what();
+  }
+}
+
+void BenchThread::refresh_stats_on_bench_thread() {
+  auto stats = bench_->acquisition_stats();
+  std::lock_guard lock(mutex_);
+  acquisition_ = stats;
+}
+
+void BenchThread::thread_main() {
+  std::unique_lock lock(mutex_);
+  for (;;) {
+    idle_until_job(lock);
+    if (jobs_.empty()) return;  // stopping with nothing left to do
+    auto job = jobs_.front();
+    jobs_.pop_front();
+    lock.unlock();
+    if (job->kind == Job::Kind::kRun) {
+      run_job(*job);
+    } else {
+      reset_job(*job);
+    }
+    lock.lock();
+  }
+}
+
+void BenchThread::idle_until_job(std::unique_lock<std::mutex>& lock) {
+  while (jobs_.empty() && !stopping_) {
+    const bool pump = bench_ != nullptr && connect_error_.empty() && description_ &&
+                      !description_->simulated_clock;
+    if (!pump) {
+      // A simulated clock only advances when asked, and an unconnected bench has no loop.
+      wake_.wait_for(lock, std::chrono::milliseconds(200));
+      continue;
+    }
+    // A real bench keeps acquiring, supervising heartbeats and feeding the live view between
+    // runs: its event loop only turns inside a blocking call.
+    lock.unlock();
+    bool tripped = false;
+    try {
+      bench_->wait_for(0.05);
+      refresh_stats_on_bench_thread();
+    } catch (const std::exception&) {
+      tripped = true;
+    }
+    lock.lock();
+    if (tripped) wake_.wait_for(lock, std::chrono::milliseconds(50));
+  }
+}
+
+void BenchThread::run_job(Job& job) {
+  const std::string procedure = job.request.procedure;
+  {
+    std::lock_guard lock(mutex_);
+    run_queued_ = false;
+    run_ = ActiveRun{"", procedure, "starting", 0};
+  }
+  auto progress = [this, &job](const runs::RunProgress& p) {
+    {
+      std::lock_guard lock(mutex_);
+      if (run_) {
+        if (run_->run_id.empty() && !p.run_id.empty()) {
+          spdlog::info("run {} started ({})", p.run_id, run_->procedure);
+        }
+        if (!p.run_id.empty()) run_->run_id = p.run_id;
+        run_->phase = p.phase;
+        run_->fraction = p.fraction;
+      }
+    }
+    if (!p.run_id.empty()) job.settle({StartOutcome::Kind::kStarted, p.run_id, ""});
+  };
+  FinishedRun finished;
+  try {
+    const auto outcome = launcher_.launch(*bench_, store_, job.request, progress);
+    job.settle({StartOutcome::Kind::kStarted, outcome.run_id, ""});
+    finished = {outcome.run_id, storage::run_status_name(outcome.status), outcome.reason};
+    if (outcome.status == storage::RunStatus::kComplete) {
+      spdlog::info("run {} complete", outcome.run_id);
+    } else {
+      spdlog::warn("run {} {}: {}", outcome.run_id, finished.status, outcome.reason);
+    }
+  } catch (const std::invalid_argument& e) {
+    spdlog::warn("run request refused: {}", e.what());
+    job.settle({StartOutcome::Kind::kBadRequest, "", e.what()});
+    std::lock_guard lock(mutex_);
+    run_.reset();
+    return;
+  } catch (const std::exception& e) {
+    std::string id;
+    {
+      std::lock_guard lock(mutex_);
+      if (run_) id = run_->run_id;
+    }
+    spdlog::error("run {} failed: {}", id.empty() ? procedure : id, e.what());
+    job.settle({StartOutcome::Kind::kFailed, id, e.what()});
+    finished = {id, "failed", e.what()};
+  }
+  try {
+    refresh_stats_on_bench_thread();
+  } catch (const std::exception&) {
+  }
+  std::lock_guard lock(mutex_);
+  run_.reset();
+  last_run_ = finished;
+}
+
+void BenchThread::reset_job(Job& job) {
+  std::string error;
+  try {
+    bool connected = false;
+    {
+      std::lock_guard lock(mutex_);
+      connected = connect_error_.empty();
+    }
+    if (!connected) {
+      connect_bench();
+      std::lock_guard lock(mutex_);
+      error = connect_error_;
+    } else if (bench_->state() == bench::BenchLifecycle::kFault) {
+      const auto reason = bench_->fault_reason();
+      bench_->clear_fault();
+      spdlog::info("fault cleared ({})", reason);
+    }
+  } catch (const std::exception& e) {
+    error = e.what();
+    spdlog::warn("fault not cleared: {}", error);
+  }
+  job.reset_done.set_value(error);
+}
+
+StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milliseconds wait) {
+  auto job = std::make_shared<Job>();
+  job->kind = Job::Kind::kRun;
+  job->request = std::move(request);
+  job->request.config_text = config_text_;
+  auto started = job->started.get_future();
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_ || !bench_) return {StartOutcome::Kind::kRejected, "", "the daemon is stopping"};
+    if (!connect_error_.empty()) {
+      return {StartOutcome::Kind::kRejected, "",
+              "the bench is not connected (" + connect_error_ + "); retry with a reset"};
+    }
+    if (run_ || run_queued_) {
+      const std::string id = run_ ? run_->run_id : std::string();
+      return {StartOutcome::Kind::kRejected, id,
+              "a run is already active" + (id.empty() ? std::string() : " (" + id + ")")};
+    }
+    if (bench_->state() == bench::BenchLifecycle::kFault) {
+      return {StartOutcome::Kind::kRejected, "",
+              "the bench is in fault (" + bench_->fault_reason() + "); clear it with a reset"};
+    }
+    run_queued_ = true;
+    jobs_.push_back(job);
+  }
+  wake_.notify_all();
+  if (started.wait_for(wait) != std::future_status::ready) {
+    return {StartOutcome::Kind::kStarted, "", "the run was queued but has not named itself yet"};
+  }
+  return started.get();
+}
+
+bool BenchThread::abort_run(const std::string& reason) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!run_ && !run_queued_) return false;
+  }
+  trip(reason);
+  return true;
+}
+
+bool BenchThread::stop(const std::string& reason) {
+  {
+    std::lock_guard lock(mutex_);
+    if (!bench_) return false;
+  }
+  trip(reason);
+  return true;
+}
+
+void BenchThread::trip(const std::string& reason) {
+  std::lock_guard lock(mutex_);
+  if (!bench_) return;
+  spdlog::warn("safe state requested: {}", reason);
+  bench_->request_stop(reason);  // thread-safe and non-blocking by contract
+}
+
+std::string BenchThread::reset(std::chrono::milliseconds wait) {
+  auto job = std::make_shared<Job>();
+  job->kind = Job::Kind::kReset;
+  auto done = job->reset_done.get_future();
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_ || !bench_) return "the daemon is stopping";
+    if (run_ || run_queued_) return "a run is active; abort it first";
+    jobs_.push_back(job);
+  }
+  wake_.notify_all();
+  if (done.wait_for(wait) != std::future_status::ready) return "the reset did not finish in time";
+  return done.get();
+}
+
+BenchStatus BenchThread::status() const {
+  std::lock_guard lock(mutex_);
+  BenchStatus s;
+  s.description = description_;
+  s.connect_error = connect_error_;
+  s.run = run_;
+  s.last_run = last_run_;
+  s.acquisition = acquisition_;
+  if (bench_ && connect_error_.empty()) {
+    s.lifecycle = bench_->state();
+    if (s.lifecycle == bench::BenchLifecycle::kFault) s.fault_reason = bench_->fault_reason();
+  }
+  s.state = daemon_state_of(s.lifecycle, run_.has_value() || run_queued_);
+  return s;
+}
+
+void BenchThread::shutdown(const std::string& reason) {
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_ && !thread_.joinable()) return;
+    stopping_ = true;
+    // Queued runs never start; the active one is tripped below.
+    for (auto& job : jobs_) {
+      if (job->kind == Job::Kind::kRun) {
+        job->settle({StartOutcome::Kind::kRejected, "", "the daemon is stopping"});
+      } else {
+        job->reset_done.set_value("the daemon is stopping");
+      }
+    }
+    jobs_.clear();
+    run_queued_ = false;
+    if (run_ && bench_) {
+      spdlog::warn("stopping with run {} active: {}", run_->run_id, reason);
+      bench_->request_stop(reason);
+    }
+  }
+  wake_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+}  // namespace wavebench::daemon

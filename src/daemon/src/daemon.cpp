@@ -1,0 +1,67 @@
+#include "wavebench/daemon/daemon.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <stdexcept>
+
+namespace wavebench::daemon {
+
+namespace {
+
+DaemonSetup checked(DaemonSetup setup) {
+  if (!setup.bench_factory) throw std::invalid_argument("daemon: no bench factory");
+  if (!setup.launcher) throw std::invalid_argument("daemon: no run launcher");
+  if (setup.token.empty()) throw std::invalid_argument("daemon: empty token");
+  if (setup.api_threads < 1) setup.api_threads = 1;
+  return setup;
+}
+
+}  // namespace
+
+Daemon::Daemon(DaemonSetup setup)
+    : setup_(checked(std::move(setup))),
+      store_(setup_.runs_dir, setup_.software_version),
+      live_(setup_.live_capacity),
+      bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
+      api_(bench_thread_, store_, live_, setup_.token) {
+  storage::RunQuery incomplete;
+  incomplete.status = storage::RunStatus::kIncomplete;
+  spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(),
+               store_.list_runs().size(), store_.list_runs(incomplete).size());
+}
+
+Daemon::~Daemon() {
+  shutdown("daemon shutting down");
+}
+
+void Daemon::start() {
+  bench_thread_.start();
+  server_ = std::make_unique<HttpServer>(
+      io_, setup_.listen_address, setup_.port,
+      [this](const ApiRequest& request) { return api_.handle(request); });
+  server_->start();
+  for (int i = 0; i < setup_.api_threads; ++i) {
+    api_threads_.emplace_back([this] { io_.run(); });
+  }
+  spdlog::info("listening on http://{}:{}", setup_.listen_address, server_->port());
+}
+
+unsigned short Daemon::port() const {
+  return server_ ? server_->port() : 0;
+}
+
+void Daemon::shutdown(const std::string& reason) {
+  if (shut_down_) return;
+  shut_down_ = true;
+  // The bench first: a start request waiting on the bench thread gets its answer, and the run
+  // ends aborted with its data on disk before the API goes away.
+  bench_thread_.shutdown(reason);
+  if (server_) server_->stop();
+  io_.stop();
+  for (auto& t : api_threads_) t.join();
+  api_threads_.clear();
+  server_.reset();
+  spdlog::info("stopped ({})", reason);
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,323 @@
+#include "wavebench/daemon/daemon_api.hpp"
+
+#include <charconv>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <stdexcept>
+
+#include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/storage/sample_log.hpp"
+
+namespace wavebench::daemon {
+
+namespace {
+
+constexpr std::size_t kDefaultSampleLimit = 1000;
+constexpr std::size_t kMaxSampleLimit = 100000;
+constexpr std::size_t kDefaultLiveLimit = 1000;
+
+// A bad query parameter, reported as 400 naming the key.
+struct BadParameter : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+std::optional<std::uint64_t> unsigned_param(const HttpTarget& target, const std::string& key) {
+  const auto it = target.query.find(key);
+  if (it == target.query.end()) return std::nullopt;
+  std::uint64_t value = 0;
+  const auto& text = it->second;
+  const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || ec != std::errc() || end != text.data() + text.size()) {
+    throw BadParameter(key + ": got '" + text + "', expected a non-negative integer");
+  }
+  return value;
+}
+
+nlohmann::json description_json(const bench::BenchDescription& d) {
+  return {{"name", d.name},
+          {"unit_serial", d.unit_serial},
+          {"ratio", d.sense.ratio},
+          {"direction_sign", d.sense.direction_sign},
+          {"sync_period_s", d.sync_period_s},
+          {"simulated_clock", d.simulated_clock},
+          {"rated_torque_nm", d.rated_torque_nm},
+          {"max_brake_torque_nm", d.max_brake_torque_nm},
+          {"twin_case", d.twin_case_path}};
+}
+
+nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
+  return {{"syncs_sent", a.syncs_sent},
+          {"samples", a.samples},
+          {"incomplete_samples", a.incomplete_samples},
+          {"sync_late", a.sync_late},
+          {"sync_skipped", a.sync_skipped},
+          {"bus_load", a.bus_load}};
+}
+
+}  // namespace
+
+ApiResponse api_error(int status, const std::string& error, const std::string& detail) {
+  return {status, {{"error", error}, {"detail", detail}}};
+}
+
+DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
+                     std::string token)
+    : bench_(bench), store_(store), live_(live), token_(std::move(token)) {}
+
+ApiResponse DaemonApi::handle(const ApiRequest& request) const {
+  HttpTarget target;
+  try {
+    target = parse_http_target(request.target);
+  } catch (const std::invalid_argument& e) {
+    return api_error(400, "bad request", e.what());
+  }
+  const auto& seg = target.segments;
+  if (seg.empty() || seg[0] != "api") {
+    return api_error(404, "not found", "no resource at " + target.path);
+  }
+  const bool get = request.method == "GET";
+  const bool post = request.method == "POST";
+  const auto method_not_allowed = [&](const char* allowed) {
+    return api_error(405, "method not allowed",
+                     request.method + " " + target.path + "; expected " + allowed);
+  };
+  const auto authorized = [&] { return bearer_matches(request.authorization, token_); };
+  const auto unauthorized = [&] {
+    return api_error(401, "unauthorized",
+                     "this request moves hardware: send 'Authorization: Bearer <token>' with the "
+                     "daemon's token (see its --token-file)");
+  };
+  try {
+    if (seg.size() == 2 && seg[1] == "status") return get ? status() : method_not_allowed("GET");
+    if (seg.size() == 2 && seg[1] == "live") return get ? live(target) : method_not_allowed("GET");
+    if (seg.size() == 2 && (seg[1] == "abort" || seg[1] == "stop" || seg[1] == "reset")) {
+      if (!post) return method_not_allowed("POST");
+      if (!authorized()) return unauthorized();
+      if (seg[1] == "abort") return abort_run();
+      if (seg[1] == "stop") return stop();
+      return reset();
+    }
+    if (seg.size() == 2 && seg[1] == "runs") {
+      if (get) return list_runs(target);
+      if (!post) return method_not_allowed("GET or POST");
+      if (!authorized()) return unauthorized();
+      return start_run(request);
+    }
+    if (seg.size() == 3 && seg[1] == "runs") {
+      return get ? run_detail(seg[2]) : method_not_allowed("GET");
+    }
+    if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
+      return get ? run_samples(seg[2], target) : method_not_allowed("GET");
+    }
+  } catch (const BadParameter& e) {
+    return api_error(400, "bad request", e.what());
+  } catch (const std::exception& e) {
+    return api_error(500, "internal error", e.what());
+  }
+  return api_error(404, "not found", "no resource at " + target.path);
+}
+
+ApiResponse DaemonApi::status() const {
+  const auto s = bench_.status();
+  nlohmann::json j;
+  j["state"] = daemon_state_name(s.state);
+  j["lifecycle"] = bench_lifecycle_text(s.lifecycle);
+  j["bench"] = s.description ? description_json(*s.description) : nlohmann::json(nullptr);
+  j["fault_reason"] =
+      s.fault_reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.fault_reason);
+  j["connect_error"] =
+      s.connect_error.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.connect_error);
+  if (s.run) {
+    j["run"] = {
+        {"id", s.run->run_id.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.run->run_id)},
+        {"procedure", s.run->procedure},
+        {"phase", s.run->phase},
+        {"progress", s.run->fraction}};
+  } else {
+    j["run"] = nullptr;
+  }
+  if (s.last_run) {
+    j["last_run"] = {
+        {"id", s.last_run->run_id}, {"status", s.last_run->status}, {"reason", s.last_run->reason}};
+  } else {
+    j["last_run"] = nullptr;
+  }
+  j["acquisition"] = s.acquisition ? acquisition_json(*s.acquisition) : nlohmann::json(nullptr);
+  j["live_samples"] = live_.total();
+  return {200, j};
+}
+
+ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
+  const auto body = nlohmann::json::parse(request.body, nullptr, false);
+  if (body.is_discarded() || !body.is_object()) {
+    return api_error(400, "bad request",
+                     "body: got '" + request.body.substr(0, 200) +
+                         "', expected a JSON object {\"procedure\": ..., \"options\": {...}}");
+  }
+  runs::RunRequest run;
+  const auto procedure = body.find("procedure");
+  if (procedure == body.end() || !procedure->is_string()) {
+    return api_error(400, "bad request",
+                     "procedure: got " +
+                         (procedure == body.end() ? std::string("nothing") : procedure->dump()) +
+                         ", expected \"static\", \"dynamic\" or \"lost-motion\"");
+  }
+  run.procedure = procedure->get<std::string>();
+  if (const auto options = body.find("options"); options != body.end()) {
+    if (!options->is_object()) {
+      return api_error(400, "bad request",
+                       "options: got " + options->dump() + ", expected an object");
+    }
+    run.options = *options;
+  }
+  for (const auto* key : {"twin", "report"}) {
+    if (const auto flag = body.find(key); flag != body.end()) {
+      if (!flag->is_boolean()) {
+        return api_error(400, "bad request",
+                         std::string(key) + ": got " + flag->dump() + ", expected true or false");
+      }
+      (std::string(key) == "twin" ? run.twin : run.report) = flag->get<bool>();
+    }
+  }
+  const auto outcome = bench_.start_run(std::move(run));
+  switch (outcome.kind) {
+    case StartOutcome::Kind::kStarted:
+      if (outcome.run_id.empty()) return {202, {{"run_id", nullptr}, {"detail", outcome.detail}}};
+      return {201, {{"run_id", outcome.run_id}}};
+    case StartOutcome::Kind::kBadRequest:
+      return api_error(400, "bad request", outcome.detail);
+    case StartOutcome::Kind::kRejected:
+      return api_error(409, "conflict", outcome.detail);
+    case StartOutcome::Kind::kFailed:
+      break;
+  }
+  auto response = api_error(500, "run failed", outcome.detail);
+  if (!outcome.run_id.empty()) response.body["run_id"] = outcome.run_id;
+  return response;
+}
+
+ApiResponse DaemonApi::abort_run() const {
+  const auto s = bench_.status();
+  if (!bench_.abort_run("operator abort")) {
+    return api_error(409, "conflict", "no run is active");
+  }
+  nlohmann::json j = {{"aborting", true}};
+  j["run_id"] = s.run && !s.run->run_id.empty() ? nlohmann::json(s.run->run_id) : nullptr;
+  return {200, j};
+}
+
+ApiResponse DaemonApi::stop() const {
+  if (!bench_.stop("operator stop")) return api_error(409, "conflict", "no bench is connected");
+  return {200, {{"stopped", true}}};
+}
+
+ApiResponse DaemonApi::reset() const {
+  const auto error = bench_.reset();
+  if (!error.empty()) return api_error(409, "conflict", error);
+  return status();
+}
+
+ApiResponse DaemonApi::list_runs(const HttpTarget& target) const {
+  storage::RunQuery query;
+  for (const auto& [key, value] : target.query) {
+    if (key == "procedure") {
+      query.procedure = value;
+    } else if (key == "unit") {
+      query.unit_serial = value;
+    } else if (key == "status") {
+      try {
+        query.status = storage::parse_run_status(value);
+      } catch (const std::invalid_argument&) {
+        throw BadParameter("status: got '" + value +
+                           "', expected running, complete, aborted or incomplete");
+      }
+    } else if (key == "limit") {
+      const auto limit = unsigned_param(target, "limit");
+      if (*limit > 100000)
+        throw BadParameter("limit: got '" + value + "', expected at most 100000");
+      query.limit = static_cast<int>(*limit);
+    } else {
+      throw BadParameter(key + ": unknown filter; expected procedure, status, unit or limit");
+    }
+  }
+  nlohmann::json runs = nlohmann::json::array();
+  for (const auto& run : store_.list_runs(query)) runs.push_back(storage::to_json(run));
+  return {200, {{"runs", runs}}};
+}
+
+ApiResponse DaemonApi::run_detail(const std::string& id) const {
+  const auto run = store_.find_run(id);
+  if (!run) return api_error(404, "not found", "run '" + id + "' is not in the index");
+  nlohmann::json j = {{"run", storage::to_json(*run)}};
+  const auto paths = store_.paths(id);
+  j["results"] = nullptr;
+  if (std::ifstream in(paths.results); in) {
+    auto results = nlohmann::json::parse(in, nullptr, false);
+    if (!results.is_discarded()) j["results"] = std::move(results);
+  }
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(paths.samples, ec);
+  j["samples_file_bytes"] = ec ? 0 : size;
+  j["report"] = std::filesystem::exists(paths.dir / "report.html")
+                    ? nlohmann::json((paths.dir / "report.html").string())
+                    : nlohmann::json(nullptr);
+  j["dir"] = paths.dir.string();
+  return {200, j};
+}
+
+ApiResponse DaemonApi::run_samples(const std::string& id, const HttpTarget& target) const {
+  const auto from = unsigned_param(target, "from").value_or(0);
+  const auto limit = unsigned_param(target, "limit").value_or(kDefaultSampleLimit);
+  if (limit > kMaxSampleLimit) {
+    throw BadParameter("limit: got '" + std::to_string(limit) + "', expected at most " +
+                       std::to_string(kMaxSampleLimit));
+  }
+  if (!store_.find_run(id)) {
+    return api_error(404, "not found", "run '" + id + "' is not in the index");
+  }
+  const auto path = store_.paths(id).samples;
+  nlohmann::json j = {{"run_id", id}, {"from", from}};
+  nlohmann::json samples = nlohmann::json::array();
+  if (!std::filesystem::exists(path)) {
+    j["total"] = 0;
+    j["samples"] = samples;
+    j["torn_tail_bytes"] = 0;
+    j["corrupt"] = false;
+    return {200, j};
+  }
+  const auto log = storage::read_sample_log(path);
+  const std::uint64_t total = log.samples.size();
+  for (std::uint64_t i = from; i < total && i < from + limit; ++i) {
+    samples.push_back(sample_to_json(log.samples[static_cast<std::size_t>(i)]));
+  }
+  j["total"] = total;
+  j["samples"] = std::move(samples);
+  j["torn_tail_bytes"] = log.torn_tail_bytes;
+  j["corrupt"] = log.corrupt_record;
+  j["gaps"] = {{"gaps", log.gaps.gaps},
+               {"missed_cycles", log.gaps.missed_cycles},
+               {"anomalies", log.gaps.anomalies},
+               {"incomplete_samples", log.gaps.incomplete_samples}};
+  return {200, j};
+}
+
+ApiResponse DaemonApi::live(const HttpTarget& target) const {
+  const auto since = unsigned_param(target, "since").value_or(0);
+  const auto limit = unsigned_param(target, "limit").value_or(kDefaultLiveLimit);
+  if (limit > kMaxSampleLimit) {
+    throw BadParameter("limit: got '" + std::to_string(limit) + "', expected at most " +
+                       std::to_string(kMaxSampleLimit));
+  }
+  const auto slice = live_.since(since, static_cast<std::size_t>(limit));
+  nlohmann::json samples = nlohmann::json::array();
+  for (const auto& s : slice.samples) {
+    auto j = sample_to_json(s.sample);
+    j["seq"] = s.seq;
+    samples.push_back(std::move(j));
+  }
+  return {200, {{"next", slice.next_seq}, {"missed", slice.missed}, {"samples", samples}}};
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,32 @@
+#include "wavebench/daemon/daemon_logging.hpp"
+
+#include <spdlog/sinks/rotating_file_sink.h>
+#include <spdlog/sinks/stdout_color_sinks.h>
+#include <spdlog/spdlog.h>
+
+#include <memory>
+#include <stdexcept>
+
+namespace wavebench::daemon {
+
+void setup_daemon_logging(const std::filesystem::path& log_dir, bool verbose) {
+  constexpr std::size_t kFileBytes = 5u << 20;
+  constexpr std::size_t kFiles = 5;
+  std::shared_ptr<spdlog::sinks::rotating_file_sink_mt> file;
+  try {
+    std::filesystem::create_directories(log_dir);
+    file = std::make_shared<spdlog::sinks::rotating_file_sink_mt>(
+        (log_dir / "wavebenchd.log").string(), kFileBytes, kFiles);
+  } catch (const std::exception& e) {
+    throw std::runtime_error("--log-dir " + log_dir.string() + ": cannot open the log (" +
+                             e.what() + ")");
+  }
+  auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
+  auto logger =
+      std::make_shared<spdlog::logger>("wavebenchd", spdlog::sinks_init_list{console, file});
+  logger->set_level(verbose ? spdlog::level::debug : spdlog::level::info);
+  logger->flush_on(spdlog::level::info);
+  spdlog::set_default_logger(logger);
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,22 @@
+#include "wavebench/daemon/run_launcher.hpp"
+
+namespace wavebench::daemon {
+
+namespace {
+
+class ExecutorRunLauncher : public RunLauncher {
+ public:
+  runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                          const runs::RunRequest& request,
+                          const runs::ProgressSink& progress) override {
+    return runs::execute_run(bench, store, request, progress);
+  }
+};
+
+}  // namespace
+
+std::unique_ptr<RunLauncher> make_executor_run_launcher() {
+  return std::make_unique<ExecutorRunLauncher>();
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,173 @@
+#include "wavebench/daemon/http_server.hpp"
+
+#include <spdlog/spdlog.h>
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/strand.hpp>
+#include <boost/beast/core.hpp>
+#include <boost/beast/http.hpp>
+#include <chrono>
+#include <stdexcept>
+
+namespace wavebench::daemon {
+
+namespace beast = boost::beast;
+namespace http = beast::http;
+namespace net = boost::asio;
+using tcp = net::ip::tcp;
+
+namespace {
+
+constexpr std::uint64_t kBodyLimit = 1 << 20;
+constexpr auto kIdleTimeout = std::chrono::seconds(60);
+
+class Session : public std::enable_shared_from_this<Session> {
+ public:
+  Session(tcp::socket socket, std::shared_ptr<const HttpServer::Handler> handler)
+      : stream_(std::move(socket)), handler_(std::move(handler)) {}
+
+  void start() {
+    net::dispatch(stream_.get_executor(), [self = shared_from_this()] { self->read(); });
+  }
+
+ private:
+  void read() {
+    parser_.emplace();
+    parser_->body_limit(kBodyLimit);
+    stream_.expires_after(kIdleTimeout);
+    http::async_read(
+        stream_, buffer_, *parser_,
+        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+  }
+
+  void on_read(beast::error_code ec) {
+    if (ec == http::error::end_of_stream) {
+      close();
+      return;
+    }
+    if (ec == http::error::body_limit) {
+      respond(api_error(413, "payload too large", "the request body is over 1 MiB"), false, 11);
+      return;
+    }
+    if (ec) return;  // timeout or reset: nothing to answer
+    const auto& request = parser_->get();
+    ApiRequest api;
+    api.method = std::string(request.method_string());
+    api.target = std::string(request.target());
+    api.authorization = std::string(request[http::field::authorization]);
+    api.body = request.body();
+    ApiResponse response;
+    try {
+      response = (*handler_)(api);
+    } catch (const std::exception& e) {
+      response = api_error(500, "internal error", e.what());
+    }
+    if (response.status >= 400) {
+      spdlog::debug("{} {} -> {} {}", api.method, api.target, response.status,
+                    response.body.value("detail", ""));
+    }
+    respond(std::move(response), request.keep_alive(), request.version());
+  }
+
+  void respond(ApiResponse response, bool keep_alive, unsigned version) {
+    auto message = std::make_shared<http::response<http::string_body>>(
+        static_cast<http::status>(response.status), version);
+    message->set(http::field::server, "wavebenchd");
+    message->set(http::field::content_type, "application/json");
+    message->keep_alive(keep_alive);
+    message->body() = response.body.dump() + "\n";
+    message->prepare_payload();
+    http::async_write(stream_, *message,
+                      [self = shared_from_this(), message](beast::error_code ec, std::size_t) {
+                        if (ec) return;
+                        if (!message->keep_alive()) {
+                          self->close();
+                          return;
+                        }
+                        self->read();
+                      });
+  }
+
+  void close() {
+    beast::error_code ignored;
+    stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+  }
+
+  beast::tcp_stream stream_;
+  beast::flat_buffer buffer_;
+  std::optional<http::request_parser<http::string_body>> parser_;
+  std::shared_ptr<const HttpServer::Handler> handler_;
+};
+
+}  // namespace
+
+struct HttpServer::Impl : std::enable_shared_from_this<HttpServer::Impl> {
+  Impl(net::io_context& io, Handler h)
+      : io_context(io),
+        acceptor(net::make_strand(io)),
+        handler(std::make_shared<const Handler>(std::move(h))) {}
+
+  void accept() {
+    acceptor.async_accept(net::make_strand(io_context),
+                          [self = shared_from_this()](beast::error_code ec, tcp::socket socket) {
+                            if (ec == net::error::operation_aborted || !self->acceptor.is_open()) {
+                              return;
+                            }
+                            if (!ec)
+                              std::make_shared<Session>(std::move(socket), self->handler)->start();
+                            self->accept();
+                          });
+  }
+
+  net::io_context& io_context;
+  tcp::acceptor acceptor;
+  std::shared_ptr<const Handler> handler;
+  unsigned short port = 0;
+};
+
+HttpServer::HttpServer(net::io_context& io, const std::string& address, unsigned short port,
+                       Handler handler)
+    : impl_(std::make_shared<Impl>(io, std::move(handler))) {
+  beast::error_code ec;
+  const auto ip = net::ip::make_address(address, ec);
+  if (ec) {
+    throw std::runtime_error("listen: address '" + address + "' is not an IP address (" +
+                             ec.message() + ")");
+  }
+  const tcp::endpoint endpoint(ip, port);
+  auto& acceptor = impl_->acceptor;
+  const auto fail = [&](const char* what) {
+    throw std::runtime_error("listen: cannot " + std::string(what) + " " + address + ":" +
+                             std::to_string(port) + " (" + ec.message() + ")");
+  };
+  acceptor.open(endpoint.protocol(), ec);
+  if (ec) fail("open");
+  acceptor.set_option(net::socket_base::reuse_address(true), ec);
+  if (ec) fail("configure");
+  acceptor.bind(endpoint, ec);
+  if (ec) fail("bind");
+  acceptor.listen(net::socket_base::max_listen_connections, ec);
+  if (ec) fail("listen on");
+  impl_->port = acceptor.local_endpoint(ec).port();
+}
+
+HttpServer::~HttpServer() {
+  stop();
+}
+
+unsigned short HttpServer::port() const {
+  return impl_->port;
+}
+
+void HttpServer::start() {
+  impl_->accept();
+}
+
+void HttpServer::stop() {
+  net::post(impl_->acceptor.get_executor(), [impl = impl_] {
+    beast::error_code ignored;
+    impl->acceptor.close(ignored);
+  });
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,67 @@
+#include "wavebench/daemon/sample_json.hpp"
+
+#include <stdexcept>
+#include <string>
+
+namespace wavebench::daemon {
+
+namespace {
+
+struct Channel {
+  const char* key;
+  storage::SampleFlag flag;
+  double storage::SyncSample::*value;
+};
+
+constexpr Channel kChannels[] = {
+    {"theta_in_rad", storage::kThetaInValid, &storage::SyncSample::theta_in_rad},
+    {"theta_out_rad", storage::kThetaOutValid, &storage::SyncSample::theta_out_rad},
+    {"input_speed_rad_s", storage::kInputSpeedValid, &storage::SyncSample::input_speed_rad_s},
+    {"torque_nm", storage::kTorqueValid, &storage::SyncSample::torque_nm},
+    {"brake_current_a", storage::kBrakeCurrentValid, &storage::SyncSample::brake_current_a},
+    {"brake_torque_nm", storage::kBrakeTorqueValid, &storage::SyncSample::brake_torque_nm},
+};
+
+template <typename T>
+T required(const nlohmann::json& json, const char* key) {
+  const auto it = json.find(key);
+  if (it == json.end() || !it->is_number()) {
+    throw std::invalid_argument(std::string("sample: ") + key + ": got " +
+                                (it == json.end() ? std::string("nothing") : it->dump()) +
+                                ", expected a number");
+  }
+  return it->get<T>();
+}
+
+}  // namespace
+
+nlohmann::json sample_to_json(const storage::SyncSample& sample) {
+  nlohmann::json j = {{"index", sample.index},
+                      {"sync_counter", sample.sync_counter},
+                      {"flags", sample.flags},
+                      {"receive_time_ns", sample.receive_time_ns},
+                      {"missed_before", sample.missed_before}};
+  for (const auto& c : kChannels) {
+    j[c.key] = sample.valid(c.flag) ? nlohmann::json(sample.*c.value) : nlohmann::json(nullptr);
+  }
+  return j;
+}
+
+storage::SyncSample sample_from_json(const nlohmann::json& json) {
+  if (!json.is_object()) {
+    throw std::invalid_argument("sample: got " + json.dump() + ", expected an object");
+  }
+  storage::SyncSample s;
+  s.index = required<std::uint64_t>(json, "index");
+  s.sync_counter = required<std::uint32_t>(json, "sync_counter");
+  s.flags = required<std::uint32_t>(json, "flags");
+  s.receive_time_ns = required<std::int64_t>(json, "receive_time_ns");
+  s.missed_before = required<std::uint32_t>(json, "missed_before");
+  for (const auto& c : kChannels) {
+    const auto it = json.find(c.key);
+    if (it != json.end() && it->is_number()) s.*c.value = it->get<double>();
+  }
+  return s;
+}
+
+}  // namespace wavebench::daemon

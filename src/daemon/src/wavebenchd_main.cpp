@@ -1,0 +1,131 @@
+// wavebenchd: the bench daemon (issue #5). Owns the bench, runs procedures on request, keeps
+// every run on disk, and serves the local HTTP + JSON API the `wavebench` CLI talks to.
+//
+// Exit status: 0 after SIGTERM/SIGINT (the bench left in its safe state, an active run
+// finished aborted), 1 on a runtime failure, 2 on a bad command line or config.
+#include <spdlog/spdlog.h>
+
+#include <CLI/CLI.hpp>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/signal_set.hpp>
+#include <csignal>
+#include <exception>
+#include <iostream>
+
+#include "wavebench/bench/bench_factory.hpp"
+#include "wavebench/config/config_error.hpp"
+#include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/daemon.hpp"
+#include "wavebench/daemon/daemon_logging.hpp"
+#include "wavebench/daemon/daemon_options.hpp"
+
+namespace {
+
+using namespace wavebench;
+
+int fail(int code, const std::string& message) {
+  std::cerr << "wavebenchd: " << message << "\n";
+  return code;
+}
+
+int run(const daemon::DaemonOptions& options) {
+  // The config first: a bad one must stop us before anything is created.
+  bench::BenchConfig config;
+  try {
+    config = bench::bench_config_from_argument(options.config);
+  } catch (const std::exception& e) {
+    return fail(2, std::string("--config ") + options.config + ": " + e.what());
+  }
+  try {
+    daemon::setup_daemon_logging(
+        options.log_dir.empty() ? options.runs_dir / "logs" : options.log_dir, options.verbose);
+  } catch (const std::exception& e) {
+    return fail(2, e.what());
+  }
+  const auto token_file =
+      options.token_file.empty() ? daemon::default_token_file() : options.token_file;
+  daemon::DaemonSetup setup;
+  try {
+    setup.token = daemon::load_or_create_token(token_file);
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+  spdlog::info("wavebenchd {} starting: bench config {}, runs in {}, token in {}",
+               WAVEBENCH_SOFTWARE_VERSION, config.source, options.runs_dir.string(),
+               token_file.string());
+  setup.bench_factory = [config] { return bench::make_bench(config); };
+  setup.launcher = daemon::make_executor_run_launcher();
+  setup.runs_dir = options.runs_dir;
+  setup.listen_address = options.listen.host;
+  setup.port = options.listen.port;
+  setup.config_text = config.text;
+
+  boost::asio::io_context signals_io;
+  boost::asio::signal_set signals(signals_io, SIGINT, SIGTERM);
+  std::string stop_reason;
+  signals.async_wait([&](const boost::system::error_code& ec, int number) {
+    if (!ec)
+      stop_reason = std::string("daemon stopped by ") + (number == SIGINT ? "SIGINT" : "SIGTERM");
+  });
+
+  std::unique_ptr<daemon::Daemon> d;
+  try {
+    d = std::make_unique<daemon::Daemon>(std::move(setup));
+  } catch (const std::exception& e) {
+    return fail(1, std::string("--runs ") + options.runs_dir.string() + ": " + e.what());
+  }
+  try {
+    d->start();
+  } catch (const config::ConfigError& e) {
+    return fail(2, std::string("--config ") + options.config + ": " + e.what());
+  } catch (const std::invalid_argument& e) {
+    return fail(2, std::string("--config ") + options.config + ": " + e.what());
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+  // Tests and scripts wait for this line to know the port.
+  std::cout << "wavebenchd: listening on http://" << options.listen.host << ":" << d->port()
+            << std::endl;
+  signals_io.run();
+  spdlog::info("{}: safe state, ending the run if one is active", stop_reason);
+  d->shutdown(stop_reason);
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"wavebenchd - the strain-wave gear test bench daemon"};
+  daemon::DaemonOptions options;
+  std::string listen = "127.0.0.1:8470";
+  std::string runs_dir = options.runs_dir.string();
+  std::string token_file;
+  std::string log_dir;
+  app.add_option("--config", options.config,
+                 "bench config (YAML), or 'sim' for the in-process simulated bench")
+      ->required();
+  app.add_option("--runs", runs_dir, "runs folder (run folders and the SQLite index)", true);
+  app.add_option("--listen", listen, "HOST:PORT of the API (port 0: any free port)", true);
+  app.add_option("--token-file", token_file,
+                 "token for requests that move hardware (created 0600 if missing; default "
+                 "$WAVEBENCH_TOKEN_FILE or ~/.config/wavebench/daemon.token)");
+  app.add_option("--log-dir", log_dir, "rotating log folder (default RUNS/logs)");
+  app.add_flag("--verbose", options.verbose, "debug logging");
+  try {
+    app.parse(argc, argv);
+    options.listen = daemon::parse_listen_address(listen);
+  } catch (const CLI::ParseError& e) {
+    const int rc = app.exit(e);
+    return rc == 0 ? 0 : 2;
+  } catch (const std::invalid_argument& e) {
+    return fail(2, e.what());
+  }
+  options.runs_dir = runs_dir;
+  options.token_file = token_file;
+  options.log_dir = log_dir;
+  try {
+    return run(options);
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+}

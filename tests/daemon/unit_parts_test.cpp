@@ -1,0 +1,162 @@
+// The daemon's small parts: targets, the live ring buffer, the token, samples as JSON, options.
+#include <gtest/gtest.h>
+#include <sys/stat.h>
+
+#include <fstream>
+
+#include "test_dir.hpp"
+#include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/daemon_client.hpp"
+#include "wavebench/daemon/daemon_options.hpp"
+#include "wavebench/daemon/daemon_state.hpp"
+#include "wavebench/daemon/http_target.hpp"
+#include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/sample_json.hpp"
+
+namespace wavebench::daemon::testing {
+namespace {
+
+TEST(HttpTarget, SplitsPathAndDecodesQuery) {
+  const auto t = parse_http_target("/api/runs/ab%20c/samples?from=10&limit=5&x=a+b%2Fc&flag");
+  ASSERT_EQ(t.segments.size(), 4u);
+  EXPECT_EQ(t.segments[2], "ab c");
+  EXPECT_EQ(t.query.at("from"), "10");
+  EXPECT_EQ(t.query.at("x"), "a b/c");
+  EXPECT_EQ(t.query.at("flag"), "");
+  EXPECT_THROW(parse_http_target("/api/%zz"), std::invalid_argument);
+  EXPECT_THROW(parse_http_target("/api/%4"), std::invalid_argument);
+  EXPECT_EQ(url_decode(url_encode("a b/c?d=é")), "a b/c?d=é");
+}
+
+storage::SyncSample sample_at(double v) {
+  storage::SyncSample s;
+  s.theta_in_rad = v;
+  s.flags = storage::kAllChannelsValid;
+  return s;
+}
+
+TEST(LiveSampleBuffer, ReturnsWhatArrivedSinceAndCountsWhatLeftTheBuffer) {
+  LiveSampleBuffer buffer(4);
+  auto slice = buffer.since(0, 10);
+  EXPECT_TRUE(slice.samples.empty());
+  EXPECT_EQ(slice.next_seq, 0u);
+  for (int i = 0; i < 3; ++i) buffer.on_sample(sample_at(i));
+  slice = buffer.since(1, 10);
+  ASSERT_EQ(slice.samples.size(), 2u);
+  EXPECT_EQ(slice.samples[0].seq, 1u);
+  EXPECT_EQ(slice.samples[0].sample.theta_in_rad, 1.0);
+  EXPECT_EQ(slice.next_seq, 3u);
+  EXPECT_EQ(slice.missed, 0u);
+  for (int i = 3; i < 10; ++i) buffer.on_sample(sample_at(i));
+  slice = buffer.since(3, 10);  // 3..5 have been overwritten
+  ASSERT_EQ(slice.samples.size(), 4u);
+  EXPECT_EQ(slice.samples.front().seq, 6u);
+  EXPECT_EQ(slice.samples.back().sample.theta_in_rad, 9.0);
+  EXPECT_EQ(slice.missed, 3u);
+  slice = buffer.since(6, 2);  // only the newest two
+  ASSERT_EQ(slice.samples.size(), 2u);
+  EXPECT_EQ(slice.samples.front().seq, 8u);
+  EXPECT_EQ(slice.missed, 2u);
+  EXPECT_TRUE(buffer.since(10, 5).samples.empty());
+  EXPECT_TRUE(buffer.since(99, 5).samples.empty());
+  EXPECT_EQ(buffer.total(), 10u);
+}
+
+TEST(ApiToken, CreatedOwnerOnlyAndReadBack) {
+  const auto dir = fresh_test_dir();
+  const auto path = dir / "sub" / "daemon.token";
+  const auto token = load_or_create_token(path);
+  EXPECT_EQ(token.size(), 64u);
+  struct stat st {};
+  ASSERT_EQ(::stat(path.c_str(), &st), 0);
+  EXPECT_EQ(st.st_mode & 0777, 0600u);
+  EXPECT_EQ(load_or_create_token(path), token);  // not replaced
+  EXPECT_EQ(read_token(path), token);
+  EXPECT_NE(load_or_create_token(dir / "other.token"), token);
+  EXPECT_THROW(read_token(dir / "missing.token"), std::runtime_error);
+  std::ofstream(dir / "empty.token") << "\n";
+  EXPECT_THROW(read_token(dir / "empty.token"), std::runtime_error);
+}
+
+TEST(ApiToken, BearerMustMatchExactly) {
+  EXPECT_TRUE(bearer_matches("Bearer abc123", "abc123"));
+  EXPECT_FALSE(bearer_matches("Bearer abc124", "abc123"));
+  EXPECT_FALSE(bearer_matches("Bearer abc1234", "abc123"));
+  EXPECT_FALSE(bearer_matches("bearer abc123", "abc123"));
+  EXPECT_FALSE(bearer_matches("abc123", "abc123"));
+  EXPECT_FALSE(bearer_matches("Bearer ", ""));
+}
+
+TEST(SampleJson, RoundTripsAndMissingChannelsAreNull) {
+  storage::SyncSample s;
+  s.index = 7;
+  s.sync_counter = 240;
+  s.flags = storage::kAllChannelsValid & ~storage::kTorqueValid;
+  s.receive_time_ns = 1'234'567'890'123;
+  s.theta_in_rad = 0.1 + 1e-12;
+  s.theta_out_rad = -3.0e-3;
+  s.input_speed_rad_s = 10.471975511965978;
+  s.torque_nm = 99;  // not valid: must not appear
+  s.brake_current_a = 0.5;
+  s.brake_torque_nm = 60;
+  s.missed_before = 2;
+  const auto j = sample_to_json(s);
+  EXPECT_TRUE(j["torque_nm"].is_null());
+  const auto back = sample_from_json(nlohmann::json::parse(j.dump()));
+  EXPECT_EQ(back.index, 7u);
+  EXPECT_EQ(back.sync_counter, 240u);
+  EXPECT_EQ(back.flags, s.flags);
+  EXPECT_EQ(back.receive_time_ns, s.receive_time_ns);
+  EXPECT_EQ(back.theta_in_rad, s.theta_in_rad);  // exact: JSON keeps round-trip digits
+  EXPECT_EQ(back.input_speed_rad_s, s.input_speed_rad_s);
+  EXPECT_EQ(back.missed_before, 2u);
+  EXPECT_THROW(sample_from_json({{"index", 1}}), std::invalid_argument);
+}
+
+TEST(DaemonOptions, ListenAddress) {
+  auto a = parse_listen_address("127.0.0.1:8470");
+  EXPECT_EQ(a.host, "127.0.0.1");
+  EXPECT_EQ(a.port, 8470);
+  a = parse_listen_address(":0");
+  EXPECT_EQ(a.host, "127.0.0.1");
+  EXPECT_EQ(a.port, 0);
+  EXPECT_EQ(parse_listen_address("[::1]:9000").host, "::1");
+  for (const char* bad : {"8470", "host:", "host:70000", "host:12x"}) {
+    try {
+      parse_listen_address(bad);
+      ADD_FAILURE() << bad;
+    } catch (const std::invalid_argument& e) {
+      EXPECT_NE(std::string(e.what()).find("--listen"), std::string::npos);
+      EXPECT_NE(std::string(e.what()).find(bad), std::string::npos);
+    }
+  }
+}
+
+TEST(DaemonClient, Url) {
+  auto e = parse_daemon_url("http://127.0.0.1:8470");
+  EXPECT_EQ(e.host, "127.0.0.1");
+  EXPECT_EQ(e.port, "8470");
+  e = parse_daemon_url("localhost");
+  EXPECT_EQ(e.port, "8470");
+  EXPECT_THROW(parse_daemon_url("https://x:1"), std::invalid_argument);
+  EXPECT_THROW(parse_daemon_url("http://x:99999"), std::invalid_argument);
+  EXPECT_THROW(parse_daemon_url("http://x:1/api"), std::invalid_argument);
+}
+
+TEST(DaemonClient, NoDaemonIsReportedAsUnreachable) {
+  // Port 1 on loopback: nothing listens there without root.
+  DaemonClient client("http://127.0.0.1:1", "");
+  EXPECT_THROW(client.get("/api/status"), DaemonUnreachable);
+}
+
+TEST(DaemonState, FromLifecycleAndRun) {
+  using bench::BenchLifecycle;
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kUnconfigured, false), DaemonState::kIdle);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kReady, false), DaemonState::kReady);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kReady, true), DaemonState::kRunning);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kFault, true), DaemonState::kFault);
+  EXPECT_STREQ(daemon_state_name(DaemonState::kFault), "fault");
+}
+
+}  // namespace
+}  // namespace wavebench::daemon::testing
