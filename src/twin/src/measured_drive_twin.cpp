@@ -166,6 +166,23 @@ struct MeasuredDriveTwin::Impl {
       y[static_cast<std::size_t>(preload.layout().twist)] =
           -te0 + (drive[0].theta1 - drive[0].theta1_raw) / preload.ratio();
     }
+    // The output follows the TE lines below its own mode and not those above (the mesh): start
+    // it so, else it rings at the mode from the first sample (the model's initial state has
+    // the output following every line).
+    {
+      const model::GearOutputs o = preload.outputs(drive[0].t, y, d);
+      const double omega_n = std::sqrt(preload.mean_stiffness() / params.inertia_output);
+      double rate = 0;
+      for (const auto& term : params.te_terms) {
+        const double w =
+            term.order_input * o.omega1 + term.order_output * o.omega1 / preload.ratio();
+        if (std::abs(w) >= omega_n) continue;
+        rate += term.amplitude_rad * w *
+                std::cos(term.order_input * o.theta1 +
+                         term.order_output * (o.theta1 / preload.ratio() + o.te) + term.phase_rad);
+      }
+      y[static_cast<std::size_t>(preload.layout().twist_rate)] = rate;
+    }
     p.load.output_torque.offset = 0;
     const model::GearModel model(p, true);
     record(model, 0);

@@ -179,7 +179,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
     }
   }
   Replay current = replayed ? best : replay(params, sense, samples, analyser, options.solver);
-  if (!replayed && current.residual.rms_arcsec < best.residual.rms_arcsec) best = current;
+  if (!replayed) best = current;  // the estimate is the starting point, fit or not
 
   const auto candidates = candidate_orders(nominal, options.extra_orders);
   for (int pass = 0; pass < options.passes; ++pass) {
