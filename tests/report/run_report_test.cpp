@@ -115,6 +115,12 @@ json static_results() {
                       {"points", pts}});
   }
   return {{"procedure", "static"},
+          {"limit_checks",
+           {{{"limit", "static_p2p_arcmin"},
+             {"value", 6.0},
+             {"measured", 6.5},
+             {"what", "p2p, forward 60 N*m"},
+             {"pass", false}}}},
           {"gear", {{"ratio", 80}, {"direction_sign", 1}}},
           {"static", passes},
           {"lost_motion",
@@ -175,6 +181,7 @@ TEST_F(RunReportTest, StaticRunTablesPlotsAndTwin) {
     EXPECT_NE(html.find(v), std::string::npos) << v;
   }
   EXPECT_NE(html.find(">0.31<"), std::string::npos);  // lost motion at 0 N*m
+  EXPECT_NE(html.find("<span class=\"alert\">fail</span>"), std::string::npos);
   EXPECT_NE(html.find(">4.90<"), std::string::npos);  // load shift
   EXPECT_NE(html.find("4.209e+04"), std::string::npos);
   EXPECT_NE(html.find("residual_after.rms_arcsec"), std::string::npos);

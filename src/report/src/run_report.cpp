@@ -81,6 +81,9 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     const std::string reason = run.field("reason", "no reason recorded");
     page.paragraph("Run " + status + ": " + reason, true);
   }
+  HtmlTable limits = limits_table();
+  add_limit_rows(limits, run);
+  add_table(page, limits);
 
   // Static TE.
   if (const json* passes = static_passes(run.results)) {

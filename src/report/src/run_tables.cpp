@@ -215,6 +215,32 @@ void add_stiffness_rows(HtmlTable& table, const RunFolder& run, const RunCell& r
         num(k, "rms_residual_arcsec", 2)});
 }
 
+HtmlTable limits_table() {
+  auto t = with_header(false, {"limit", "what", "limit value", "measured", "verdict"});
+  t.caption = "Limits";
+  return t;
+}
+
+void add_limit_rows(HtmlTable& table, const RunFolder& run) {
+  const auto it = run.results.find("limit_checks");
+  if (it == run.results.end() || !it->is_array()) return;
+  for (const auto& c : *it) {
+    if (!c.is_object()) continue;
+    const auto pass = c.find("pass");
+    const bool failed = pass != c.end() && pass->is_boolean() && !pass->get<bool>();
+    const bool passed = pass != c.end() && pass->is_boolean() && pass->get<bool>();
+    table.rows.push_back({{text(c, "limit"), {}, false},
+                          {text(c, "what"), {}, false},
+                          {gnum(c, "value"), {}, false},
+                          {gnum(c, "measured"), {}, false},
+                          {failed   ? "fail"
+                           : passed ? "pass"
+                                    : "\u2013",
+                           {},
+                           failed}});
+  }
+}
+
 HtmlTable twin_table(bool with_run) {
   auto t = with_header(with_run, {"quantity", "value"});
   t.caption = "The twin beside the bench";

@@ -39,6 +39,9 @@ HtmlTable twin_table(bool with_run);  // every number of results.json "twin", by
 // `only_rms`: just the RMS figures (the session's compact view).
 void add_twin_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_cell, bool only_rms);
 
+HtmlTable limits_table();  // results.json "limit_checks": limit, value, measured, pass
+void add_limit_rows(HtmlTable& table, const RunFolder& run);
+
 // The status as shown: "aborted: <reason>" etc.; alert when not complete.
 HtmlCell status_cell(const RunFolder& run);
 
