@@ -9,7 +9,9 @@
 #include "wavebench/runs/dynamic_te_procedure.hpp"
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/run_limits.hpp"
+#include "wavebench/runs/run_request_check.hpp"
 #include "wavebench/runs/sample_recorder.hpp"
+#include "wavebench/runs/software_version.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -159,6 +161,10 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
 
 }  // namespace
 
+void check_run_request(const RunRequest& request) {
+  parse_request(request);
+}
+
 RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunRequest& request,
                        const ProgressSink& progress) {
   ParsedRequest parsed = parse_request(request);  // nothing on disk before this passes
@@ -178,7 +184,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"procedure", request.procedure},
       {"unit_serial", description.unit_serial},
       {"bench", description.name},
-      {"software_version", WAVEBENCH_VERSION},
+      {"software_version", software_version()},
       {"gear",
        {{"ratio", description.sense.ratio}, {"direction_sign", description.sense.direction_sign}}},
       {"sync_period_s", description.sync_period_s},
