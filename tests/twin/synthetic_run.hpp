@@ -85,6 +85,7 @@ struct SyntheticRun {
 struct SensorNoise {
   double output_encoder_arcsec = 0.5;
   int input_counts_per_rev = 131072;
+  int output_counts_per_rev = 0;  // 0: no quantisation of the output encoder
   double torque_nm = 0.02;
   unsigned seed = 7;
   double plant_substep = 2e-5;
@@ -129,6 +130,10 @@ inline SyntheticRun synthesise_run(const model::GearParams& gear,
       x.receive_time_ns = static_cast<std::int64_t>(std::llround(s.t * 1e9));
       x.theta_in_rad = std::round(s.theta_in / count) * count;
       x.theta_out_rad = s.theta_out + noise.output_encoder_arcsec * kArcsec * unit(rng);
+      if (noise.output_counts_per_rev > 0) {
+        const double out_count = 2 * std::numbers::pi / noise.output_counts_per_rev;
+        x.theta_out_rad = std::round(x.theta_out_rad / out_count) * out_count;
+      }
       x.input_speed_rad_s = s.omega_in;
       x.torque_nm = s.shaft_torque + noise.torque_nm * unit(rng);
       x.brake_torque_nm = plant.brake_torque_setting();
