@@ -49,6 +49,8 @@ TEST(Seed004UnitTwin, DynamicRunCalibratesToTheNoiseFloor) {
               cal.after.rms_arcsec);
   EXPECT_LT(cal.after.rms_arcsec, cal.before.rms_arcsec);
   EXPECT_LE(cal.after.rms_arcsec, 1.1 * run.noise_floor_arcsec);
+  std::printf("noise floor estimated from the run: %.3f arcsec\n", cal.noise_floor_arcsec);
+  EXPECT_NEAR(cal.noise_floor_arcsec, run.noise_floor_arcsec, 0.05 * run.noise_floor_arcsec);
 }
 
 }  // namespace

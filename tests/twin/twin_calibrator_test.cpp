@@ -42,6 +42,8 @@ TEST(TwinCalibration, ResidualFallsToTheSensorNoiseFloor) {
   EXPECT_LT(cal.after.rms_arcsec, cal.before.rms_arcsec);
   EXPECT_LE(cal.after.rms_arcsec, 1.1 * run.noise_floor_arcsec);
   EXPECT_EQ(cal.replay_after.size(), run.samples.size());
+  // The run's own estimate of the floor (second differences) agrees with the known one.
+  EXPECT_NEAR(cal.noise_floor_arcsec, run.noise_floor_arcsec, 0.05 * run.noise_floor_arcsec);
 }
 
 TEST(TwinCalibration, FindsTheBacklashAndStiffnessOfTheUnit) {

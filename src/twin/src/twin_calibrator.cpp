@@ -153,6 +153,24 @@ Replay replay(const model::GearParams& params, const procedures::GearSense& sens
 
 }  // namespace
 
+double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points) {
+  double squares = 0;
+  std::size_t n = 0;
+  for (std::size_t i = 3; i < points.size(); ++i) {
+    if (points[i].index != points[i - 3].index + 3) continue;  // a gap
+    double d = 0;
+    constexpr double kWeights[4] = {-1, 3, -3, 1};
+    for (std::size_t j = 0; j < 4; ++j) {
+      const TwinPoint& p = points[i - 3 + j];
+      d += kWeights[j] * (p.measured_te_rad - p.predicted_te_rad);
+    }
+    if (!std::isfinite(d)) continue;
+    squares += d * d;
+    ++n;
+  }
+  return n == 0 ? 0.0 : std::sqrt(squares / (20.0 * static_cast<double>(n))) * kArcsecPerRad;
+}
+
 TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
                                analysis::SpectrumAnalyser& analyser,
@@ -262,6 +280,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   cal.calibrated.name = nominal.name + " (calibrated)";
   cal.after = best.residual;
   cal.replay_after = std::move(best.points);
+  cal.noise_floor_arcsec = estimate_te_noise_floor_arcsec(cal.replay_after);
   // Stiffness factor: the calibrated law's small-twist stiffness over the nominal's.
   if (model::is_elastic(nominal.stiffness.law) && model::is_elastic(cal.calibrated.stiffness.law)) {
     const double k0 = model::ElasticStiffness(nominal.stiffness).small_twist_stiffness();
@@ -303,6 +322,9 @@ nlohmann::json to_json(const TwinCalibration& c) {
           {"residual_after", procedures::to_json(c.after)},
           {"rms_before_arcsec", c.before.rms_arcsec},
           {"rms_after_arcsec", c.after.rms_arcsec},
+          {"noise_floor_arcsec", c.noise_floor_arcsec},
+          {"rms_after_over_noise_floor",
+           c.noise_floor_arcsec > 0 ? c.after.rms_arcsec / c.noise_floor_arcsec : 0.0},
           {"backlash_nominal_arcmin", c.nominal.backlash.total_rad * kArcminPerRad},
           {"backlash_calibrated_arcmin", c.calibrated.backlash.total_rad * kArcminPerRad},
           {"stiffness_factor", c.stiffness_factor},

@@ -52,7 +52,17 @@ struct TwinCalibration {
   std::vector<std::string> fitted;  // what the fit changed: te_harmonics, offset, backlash, ...
   std::vector<procedures::HarmonicOrder> orders;  // the harmonic basis used
   int passes = 0;
+  // The sensors' noise in the measured TE, estimated from the run itself (see
+  // estimate_te_noise_floor): what the residual cannot go below.
+  double noise_floor_arcsec = 0;
 };
+
+// The white part of the residual (measured − predicted TE) over consecutive samples, from its
+// third differences: sqrt(mean(Δ³r²)/20), exact for white noise, while a smooth line of
+// frequency f adds only (2π·f/f_s)³ of its amplitude. With the calibrated twin the residual's
+// lines are small, so this is the sensors' noise in the TE. 0 without four consecutive
+// samples.
+double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points);
 
 // Throws std::invalid_argument when fewer samples than unknowns carry a measured TE.
 TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
