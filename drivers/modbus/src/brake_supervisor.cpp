@@ -46,6 +46,11 @@ std::optional<BrakeReadback> BrakeSupervisor::latest() const {
   return latest_;
 }
 
+BrakeClient::Clock::time_point BrakeSupervisor::latest_time() const {
+  std::lock_guard lock(data_mutex_);
+  return latest_time_;
+}
+
 std::string BrakeSupervisor::last_error() const {
   std::lock_guard lock(data_mutex_);
   return last_error_;
@@ -64,6 +69,7 @@ void BrakeSupervisor::cycle(BrakeClient& client, bool& watchdog_armed) {
   {
     std::lock_guard lock(data_mutex_);
     latest_ = r;
+    latest_time_ = BrakeClient::Clock::now();
   }
   if (r.status.alarm && !alarm_seen_) {
     alarm_seen_ = true;

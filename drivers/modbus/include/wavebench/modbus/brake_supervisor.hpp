@@ -48,6 +48,8 @@ class BrakeSupervisor {
 
   bool link_lost() const noexcept { return link_lost_; }
   std::optional<BrakeReadback> latest() const;
+  // When latest() was read (steady clock); the epoch until the first readback.
+  BrakeClient::Clock::time_point latest_time() const;
   std::string last_error() const;
   uint64_t heartbeats_sent() const noexcept { return heartbeats_; }
   uint64_t cycles() const noexcept { return cycles_; }
@@ -64,6 +66,7 @@ class BrakeSupervisor {
   bool stop_requested_ = false;
   mutable std::mutex data_mutex_;
   std::optional<BrakeReadback> latest_;
+  BrakeClient::Clock::time_point latest_time_{};
   std::string last_error_;
   std::atomic<bool> heartbeat_suspended_{false};
   std::atomic<bool> link_lost_{false};

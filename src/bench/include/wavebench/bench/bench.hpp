@@ -20,6 +20,7 @@
 // blocking call in progress (and every later motion call) throw BenchAborted. Samples acquired
 // up to then have already gone to the observers.
 
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <stdexcept>
@@ -48,11 +49,19 @@ class SampleObserver {
 
 struct AcquisitionStats {
   std::uint64_t syncs_sent = 0;
-  std::uint64_t samples = 0;          // samples handed to observers
+  std::uint64_t samples = 0;             // samples handed to observers
   std::uint64_t incomplete_samples = 0;  // a channel missing
-  std::uint64_t sync_late = 0;        // SYNC producer woke late (real clock only)
-  std::uint64_t sync_skipped = 0;     // whole periods skipped (real clock only)
-  double bus_load = 0;                // estimated fraction of the bus bit rate
+  std::uint64_t sync_late = 0;           // SYNC producer woke late (real clock only)
+  std::uint64_t sync_skipped = 0;        // whole periods skipped (real clock only)
+  double bus_load = 0;                   // estimated fraction of the bus bit rate
+  // Added for the benchmark (jitter) and the gap report:
+  std::uint64_t cycles_timed_out = 0;  // simulated clock: a cycle closed by its real-time timeout
+  std::uint64_t late_frames = 0;       // a cycle's PDO that arrived after the cycle closed
+  double sync_lateness_p50_s = 0;      // SYNC sent after its deadline (real clock only)
+  double sync_lateness_p99_s = 0;
+  double sync_lateness_max_s = 0;
+  double bench_time_s = 0;  // now()
+  double real_time_s = 0;   // steady clock since connect()
 };
 
 class Bench {
@@ -91,6 +100,10 @@ class Bench {
   // returns whether done() became true.
   virtual bool wait_until(const std::function<bool()>& done, double timeout_s) = 0;
   virtual double now() const = 0;
+  // Runs the event loop for `seconds` of bench time in any state without moving anything and
+  // without throwing BenchAborted: keeps heartbeats, the brake and acquisition serviced while
+  // the daemon is idle or in fault. (Added; the default does nothing.)
+  virtual void idle_for(double seconds) { (void)seconds; }
   // The last assembled sample (all zero before the first).
   virtual const storage::SyncSample& latest_sample() const = 0;
 

@@ -1,0 +1,163 @@
+#pragma once
+// The Bench over CANopen and Modbus (bench.md §1, §7): a canopen::Master on a CAN bus drives the
+// CiA 402 servo, reads the CiA 406 output encoder and the torque sensor by synchronous TPDOs,
+// and the powder brake is commanded over Modbus from the bench thread (modbus::BrakeClient)
+// while a modbus::BrakeSupervisor thread feeds its watchdog and reads it back.
+//
+// Real clock: canopen::SyncProducer on absolute deadlines; a cycle closes when all its PDOs
+// arrived or at the next SYNC. Simulated clock: the next SYNC goes out as soon as the cycle's
+// PDOs arrived (or after can.cycle_timeout of real time, the missing ones counted), and bench
+// time is SYNC index × period.
+//
+// Brake and the simulated clock: the controller's watchdog and its physics count bench time
+// (the in-process plant steps the brake by SYNC), while the supervisor's heartbeat is real
+// time. So on the simulated clock the bench thread also writes the heartbeat register every
+// heartbeat period of bench time: the watchdog keeps its meaning in bench time, and the
+// supervisor's real-time link-loss detection is unchanged. Heartbeats of the CANopen nodes are
+// likewise watched in bench time on the simulated clock (the simulated nodes produce them in
+// bench time) and by canopen::HeartbeatConsumer (real time) on the real clock.
+
+#include <atomic>
+#include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <functional>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "wavebench/bench/bench.hpp"
+#include "wavebench/bench/bench_config.hpp"
+#include "wavebench/bench/safety_limits_check.hpp"
+#include "wavebench/bench/sample_assembler.hpp"
+#include "wavebench/bench/sync_lateness_histogram.hpp"
+#include "wavebench/can/can_bus.hpp"
+#include "wavebench/canopen/cia402_drive.hpp"
+#include "wavebench/canopen/cia406_encoder.hpp"
+#include "wavebench/canopen/master.hpp"
+#include "wavebench/canopen/torque_sensor.hpp"
+#include "wavebench/modbus/brake_client.hpp"
+#include "wavebench/modbus/brake_supervisor.hpp"
+
+namespace wavebench::bench {
+
+class CanopenBench final : public Bench, private modbus::BrakeEventSink {
+ public:
+  // `bus` (and its io_context) must outlive the bench; the bench thread runs that io_context.
+  CanopenBench(BenchConfig config, can::CanBus& bus);
+  ~CanopenBench() override;
+
+  const BenchDescription& description() const noexcept override { return config_.description; }
+  void connect() override;
+  void disconnect() noexcept override;
+  BenchLifecycle state() const noexcept override { return lifecycle_.load(); }
+  std::string fault_reason() const override;
+  void clear_fault() override;
+
+  void move_input_to(double theta_in_rad, double speed_rad_s) override;
+  void run_input_velocity(double omega_in_rad_s) override;
+  void stop_motion() override;
+  void set_brake_torque(double torque_nm, double ramp_nm_per_s = 0) override;
+  void wait_for(double seconds) override;
+  bool wait_until(const std::function<bool()>& done, double timeout_s) override;
+  void idle_for(double seconds) override;
+  double now() const override;
+  const storage::SyncSample& latest_sample() const override { return latest_; }
+
+  void add_observer(SampleObserver& observer) override;
+  void remove_observer(SampleObserver& observer) override;
+  AcquisitionStats acquisition_stats() const override;
+  void request_stop(const std::string& reason) noexcept override;
+
+  const BenchConfig& config() const noexcept { return config_; }
+  canopen::Master& master() noexcept { return *master_; }
+  // Real clock: every SYNC tick (deadline and send time), e.g. for a jitter benchmark.
+  void on_sync_tick(std::function<void(const canopen::SyncProducer::Tick&)> hook) {
+    tick_hook_ = std::move(hook);
+  }
+  // Drive values of the last cycle (statusword, following error).
+  const DriveCycleValues& latest_drive() const noexcept { return latest_drive_; }
+
+ private:
+  void on_brake_event(const modbus::BrakeEvent& event) noexcept override;
+
+  void connect_brake();
+  void configure_nodes();
+  void start_acquisition();
+  void stop_acquisition() noexcept;
+  void begin_cycle(std::uint64_t index, std::int64_t time_ns);
+  void on_pdo(unsigned which, const can::Frame& frame) noexcept;
+  void finish_cycle() noexcept;
+  void send_simulated_sync() noexcept;
+  void watch_heartbeats_in_bench_time() noexcept;
+  void on_heartbeat_frame(const can::Frame& frame) noexcept;
+
+  void trip(const std::string& reason) noexcept;
+  void make_brake_safe() noexcept;
+  void quick_stop_drive() noexcept;
+  void finish_safe_state() noexcept;
+
+  // Runs the event loop until done() or `timeout_s` of bench time; throws BenchAborted when
+  // the bench trips (unless `tolerate_fault`).
+  bool run_until(const std::function<bool()>& done, double timeout_s, bool tolerate_fault = false);
+  void run_once();
+  void ensure_ready();
+  void throw_if_tripped();
+  void set_mode(canopen::OperationMode mode);
+  template <typename F>
+  void drive_command(const char* what, F&& f);
+  template <typename F>
+  void brake_command(const char* what, F&& f);
+  std::optional<modbus::BrakeReadback> fresh_brake_readback() const;
+  std::string node_name(canopen::NodeId node) const;
+  std::chrono::steady_clock::time_point real_now() const {
+    return std::chrono::steady_clock::now();
+  }
+
+  BenchConfig config_;
+  can::CanBus& bus_;
+  boost::asio::io_context& io_;
+  InputShaftScaling scaling_;
+  std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+
+  std::unique_ptr<canopen::Master> master_;
+  std::unique_ptr<canopen::Cia402Drive> drive_;
+  std::unique_ptr<canopen::Cia406Encoder> encoder_;
+  std::unique_ptr<canopen::TorqueSensor> torque_;
+  std::unique_ptr<SampleAssembler> assembler_;
+  SafetyLimitsCheck limits_check_;
+  std::vector<can::CanBus::Subscription> subscriptions_;
+
+  std::unique_ptr<modbus::BrakeClient> brake_;
+  std::unique_ptr<modbus::BrakeSupervisor> brake_supervisor_;
+  bool brake_safe_pending_ = false;
+  double next_brake_heartbeat_ = 0;
+
+  std::atomic<BenchLifecycle> lifecycle_{BenchLifecycle::kUnconfigured};
+  mutable std::mutex reason_mutex_;
+  std::string reason_;
+  bool tripped_ = false;
+  bool quick_stop_pending_ = false;
+
+  std::vector<SampleObserver*> observers_;
+  storage::SyncSample latest_;
+  DriveCycleValues latest_drive_;
+  std::uint64_t samples_ = 0;
+  AcquisitionStats stats_;
+  SyncLatenessHistogram lateness_;
+  std::function<void(const canopen::SyncProducer::Tick&)> tick_hook_;
+
+  bool acquiring_ = false;
+  std::chrono::steady_clock::time_point t0_{};
+  std::uint64_t sync_index_ = 0;  // the open (or last) cycle's SYNC index
+  boost::asio::steady_timer cycle_timer_;
+  std::uint64_t cycle_generation_ = 0;
+  std::map<canopen::NodeId, double> last_heartbeat_;  // bench time, simulated clock
+  std::map<canopen::NodeId, std::uint8_t> node_state_;
+  std::optional<canopen::OperationMode> mode_;
+};
+
+}  // namespace wavebench::bench

@@ -1,0 +1,37 @@
+#pragma once
+// The per-sample limits of bench.md §7: input speed, brake current and torque, measured torque,
+// following error, coil temperature, TE excursion. Returns the first limit crossed as a
+// sentence naming the channel, the value and the limit; channels not valid in the sample are
+// not judged. TE excursion is |TE − TE₀| with TE₀ the first complete sample's TE, because the
+// two encoders' zeros are arbitrary.
+
+#include <optional>
+#include <string>
+
+#include "wavebench/bench/bench_description.hpp"
+#include "wavebench/bench/sample_assembler.hpp"
+#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/storage/sync_sample.hpp"
+
+namespace wavebench::bench {
+
+class SafetyLimitsCheck {
+ public:
+  SafetyLimitsCheck(SafetyLimits limits, procedures::GearSense sense)
+      : limits_(limits), sense_(sense) {}
+
+  // coil_temperature_c: the brake's latest fresh readback, if any.
+  std::optional<std::string> check(const storage::SyncSample& sample, const DriveCycleValues& drive,
+                                   std::optional<double> coil_temperature_c);
+  // Forget TE₀ (after a fault is cleared, the next complete sample sets it again).
+  void reset_reference() noexcept { have_te0_ = false; }
+  SafetyLimits& limits() noexcept { return limits_; }
+
+ private:
+  SafetyLimits limits_;
+  procedures::GearSense sense_;
+  bool have_te0_ = false;
+  double te0_ = 0;
+};
+
+}  // namespace wavebench::bench

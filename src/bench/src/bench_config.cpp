@@ -1,0 +1,400 @@
+#include "wavebench/bench/bench_config.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <functional>
+#include <set>
+#include <sstream>
+
+#include "wavebench/config/config_error.hpp"
+#include "wavebench/config/twin_case.hpp"
+#include "wavebench/config/units.hpp"
+#include "wavebench/simdevices/simulated_bench_config.hpp"
+
+#ifndef WAVEBENCH_CONFIG_DIR
+#define WAVEBENCH_CONFIG_DIR "configs"
+#endif
+
+namespace wavebench::bench {
+namespace {
+
+using config::ConfigError;
+using config::Dimension;
+
+std::string scalar_text(const YAML::Node& node) {
+  if (node.IsScalar()) return node.Scalar();
+  std::ostringstream out;
+  out << node;
+  return out.str();
+}
+
+void check_keys(const YAML::Node& node, const std::string& section,
+                const std::set<std::string>& allowed) {
+  if (!node.IsMap()) throw ConfigError(section, scalar_text(node), "a mapping");
+  for (const auto& item : node) {
+    const auto key = item.first.as<std::string>();
+    if (!allowed.contains(key)) {
+      std::string list;
+      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
+      throw ConfigError(section.empty() ? key : section + "." + key, scalar_text(item.second),
+                        "one of the known keys: " + list);
+    }
+  }
+}
+
+double quantity(const YAML::Node& node, Dimension dim, const std::string& key) {
+  if (!node.IsScalar()) throw ConfigError(key, scalar_text(node), config::describe(dim));
+  return config::parse_quantity(node.Scalar(), dim, key);
+}
+
+double number(const YAML::Node& node, const std::string& key, double lo, double hi) {
+  double v = 0;
+  try {
+    v = node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(key, scalar_text(node), "a number");
+  }
+  if (!std::isfinite(v) || v < lo || v > hi) {
+    std::ostringstream expected;
+    expected << "a number in [" << lo << ", " << hi << "]";
+    throw ConfigError(key, scalar_text(node), expected.str());
+  }
+  return v;
+}
+
+long integer(const YAML::Node& node, const std::string& key, long lo, long hi) {
+  long v = 0;
+  try {
+    v = node.as<long>();
+  } catch (const YAML::Exception&) {
+    throw ConfigError(key, scalar_text(node), "an integer");
+  }
+  if (v < lo || v > hi) {
+    throw ConfigError(key, scalar_text(node),
+                      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  }
+  return v;
+}
+
+std::string text(const YAML::Node& node, const std::string& key) {
+  if (!node.IsScalar()) throw ConfigError(key, scalar_text(node), "a string");
+  return node.Scalar();
+}
+
+void optional(const YAML::Node& section, const char* key,
+              const std::function<void(const YAML::Node&)>& read) {
+  if (const auto n = section[key]; n) read(n);
+}
+
+std::filesystem::path resolve(const std::filesystem::path& base, const std::string& p) {
+  std::filesystem::path path(p);
+  return path.is_absolute() ? path : (base / path).lexically_normal();
+}
+
+// "0x6130:1" -> index, sub.
+void parse_object(const std::string& value, const std::string& key, std::uint16_t& index,
+                  std::uint8_t& sub) {
+  const auto colon = value.find(':');
+  try {
+    std::size_t used = 0;
+    const unsigned long i = std::stoul(value.substr(0, colon), &used, 0);
+    if (used != (colon == std::string::npos ? value.size() : colon) || i > 0xFFFF)
+      throw std::invalid_argument(value);
+    unsigned long s = 0;
+    if (colon != std::string::npos) {
+      s = std::stoul(value.substr(colon + 1), &used, 0);
+      if (used != value.size() - colon - 1 || s > 0xFF) throw std::invalid_argument(value);
+    }
+    index = static_cast<std::uint16_t>(i);
+    sub = static_cast<std::uint8_t>(s);
+  } catch (const std::exception&) {
+    throw ConfigError(key, value, "an object as INDEX:SUB, e.g. \"0x6130:1\"");
+  }
+}
+
+void read_top(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
+  auto& d = c.description;
+  optional(root, "name", [&](const YAML::Node& n) { d.name = text(n, "name"); });
+  optional(root, "unit_serial",
+           [&](const YAML::Node& n) { d.unit_serial = text(n, "unit_serial"); });
+  optional(root, "rated_torque", [&](const YAML::Node& n) {
+    d.rated_torque_nm = quantity(n, Dimension::kTorque, "rated_torque");
+    if (d.rated_torque_nm <= 0) throw ConfigError("rated_torque", scalar_text(n), "a torque > 0");
+  });
+  optional(root, "gear", [&](const YAML::Node& n) {
+    check_keys(n, "gear", {"ratio", "direction_sign"});
+    optional(n, "ratio",
+             [&](const YAML::Node& v) { d.sense.ratio = number(v, "gear.ratio", 1e-3, 1e6); });
+    optional(n, "direction_sign", [&](const YAML::Node& v) {
+      const long s = integer(v, "gear.direction_sign", -1, 1);
+      if (s == 0) throw ConfigError("gear.direction_sign", "0", "+1 or -1");
+      d.sense.direction_sign = static_cast<int>(s);
+    });
+  });
+  optional(root, "sync_period", [&](const YAML::Node& n) {
+    d.sync_period_s = quantity(n, Dimension::kTime, "sync_period");
+    if (d.sync_period_s < 1e-4 || d.sync_period_s > 1.0)
+      throw ConfigError("sync_period", scalar_text(n), "a period between 100 us and 1 s");
+    if (std::abs(std::round(d.sync_period_s * 1e6) - d.sync_period_s * 1e6) > 1e-6)
+      throw ConfigError("sync_period", scalar_text(n), "a whole number of microseconds");
+  });
+  optional(root, "clock", [&](const YAML::Node& n) {
+    const auto v = text(n, "clock");
+    if (v == "real") {
+      c.clock = BenchClockKind::kReal;
+    } else if (v == "simulated") {
+      c.clock = BenchClockKind::kSimulated;
+    } else {
+      throw ConfigError("clock", v, "real or simulated");
+    }
+  });
+  optional(root, "twin_case", [&](const YAML::Node& n) {
+    d.twin_case_path = resolve(base, text(n, "twin_case")).string();
+  });
+}
+
+void read_can(const YAML::Node& n, CanSettings& can) {
+  check_keys(n, "can",
+             {"interface", "bitrate", "sdo_timeout", "heartbeat_producer", "nodes",
+              "bus_load_warning", "cycle_timeout"});
+  optional(n, "interface", [&](const YAML::Node& v) {
+    can.interface = text(v, "can.interface");
+    if (can.interface.empty())
+      throw ConfigError("can.interface", "", "inproc or an interface name");
+  });
+  optional(n, "bitrate",
+           [&](const YAML::Node& v) { can.bitrate = number(v, "can.bitrate", 1e4, 1e7); });
+  optional(n, "sdo_timeout", [&](const YAML::Node& v) {
+    can.sdo_timeout_s = quantity(v, Dimension::kTime, "can.sdo_timeout");
+    if (can.sdo_timeout_s <= 0) throw ConfigError("can.sdo_timeout", scalar_text(v), "a time > 0");
+  });
+  optional(n, "heartbeat_producer", [&](const YAML::Node& v) {
+    can.heartbeat_producer_s = quantity(v, Dimension::kTime, "can.heartbeat_producer");
+    if (can.heartbeat_producer_s < 1e-3 || can.heartbeat_producer_s > 65.535)
+      throw ConfigError("can.heartbeat_producer", scalar_text(v), "a time in [1 ms, 65.535 s]");
+  });
+  optional(n, "bus_load_warning", [&](const YAML::Node& v) {
+    can.bus_load_warning = number(v, "can.bus_load_warning", 0, 10);
+  });
+  optional(n, "cycle_timeout", [&](const YAML::Node& v) {
+    can.cycle_timeout_s = quantity(v, Dimension::kTime, "can.cycle_timeout");
+    if (can.cycle_timeout_s <= 0)
+      throw ConfigError("can.cycle_timeout", scalar_text(v), "a time > 0");
+  });
+  optional(n, "nodes", [&](const YAML::Node& v) {
+    check_keys(v, "can.nodes", {"drive", "encoder", "torque_sensor"});
+    auto node = [&](const char* key, std::uint8_t& out) {
+      optional(v, key, [&](const YAML::Node& x) {
+        out = static_cast<std::uint8_t>(integer(x, std::string("can.nodes.") + key, 1, 127));
+      });
+    };
+    node("drive", can.drive_node);
+    node("encoder", can.encoder_node);
+    node("torque_sensor", can.torque_node);
+  });
+  if (can.drive_node == can.encoder_node || can.drive_node == can.torque_node ||
+      can.encoder_node == can.torque_node) {
+    throw ConfigError("can.nodes",
+                      std::to_string(can.drive_node) + ", " + std::to_string(can.encoder_node) +
+                          ", " + std::to_string(can.torque_node),
+                      "three different node ids");
+  }
+}
+
+void read_devices(const YAML::Node& root, BenchConfig& c) {
+  optional(root, "drive", [&](const YAML::Node& n) {
+    check_keys(n, "drive", {"counts_per_revolution", "profile_acceleration", "target_settle"});
+    optional(n, "counts_per_revolution", [&](const YAML::Node& v) {
+      c.drive.counts_per_revolution =
+          static_cast<std::uint32_t>(integer(v, "drive.counts_per_revolution", 1, 1L << 31));
+    });
+    optional(n, "profile_acceleration", [&](const YAML::Node& v) {
+      c.drive.profile_acceleration_rad_s2 = number(v, "drive.profile_acceleration", 0, 1e9);
+    });
+    optional(n, "target_settle", [&](const YAML::Node& v) {
+      c.drive.target_settle_s = quantity(v, Dimension::kTime, "drive.target_settle");
+    });
+  });
+  optional(root, "encoder", [&](const YAML::Node& n) {
+    check_keys(n, "encoder", {"counts_per_turn", "turns", "noise"});
+    optional(n, "counts_per_turn", [&](const YAML::Node& v) {
+      c.encoder.counts_per_turn =
+          static_cast<std::uint32_t>(integer(v, "encoder.counts_per_turn", 2, 1L << 31));
+    });
+    optional(n, "turns", [&](const YAML::Node& v) {
+      c.encoder.turns = static_cast<std::uint32_t>(integer(v, "encoder.turns", 1, 1L << 20));
+    });
+    optional(n, "noise", [&](const YAML::Node& v) {
+      c.encoder.noise_rad = quantity(v, Dimension::kAngle, "encoder.noise");
+    });
+  });
+  optional(root, "torque_sensor", [&](const YAML::Node& n) {
+    check_keys(n, "torque_sensor", {"object", "type", "scale", "offset", "noise"});
+    auto& s = c.torque_sensor.sensor;
+    optional(n, "object", [&](const YAML::Node& v) {
+      parse_object(text(v, "torque_sensor.object"), "torque_sensor.object", s.index, s.sub);
+    });
+    optional(n, "type", [&](const YAML::Node& v) {
+      const auto t = text(v, "torque_sensor.type");
+      const auto type = canopen::parse_value_type(t);
+      if (!type)
+        throw ConfigError("torque_sensor.type", t, "u8, u16, u32, i8, i16, i32, f32 or f64");
+      s.type = *type;
+    });
+    optional(n, "scale", [&](const YAML::Node& v) {
+      s.scale = number(v, "torque_sensor.scale", -1e9, 1e9);
+      if (s.scale == 0)
+        throw ConfigError("torque_sensor.scale", "0", "a non-zero N*m per raw unit");
+    });
+    optional(n, "offset", [&](const YAML::Node& v) {
+      s.offset = quantity(v, Dimension::kTorque, "torque_sensor.offset");
+    });
+    optional(n, "noise", [&](const YAML::Node& v) {
+      c.torque_sensor.noise_nm = quantity(v, Dimension::kTorque, "torque_sensor.noise");
+    });
+  });
+}
+
+void read_safety(const YAML::Node& n, SafetyLimits& l) {
+  check_keys(n, "safety",
+             {"max_input_speed", "max_brake_current", "max_brake_torque", "max_measured_torque",
+              "max_following_error", "max_coil_temperature", "max_te_excursion",
+              "heartbeat_timeout", "modbus_link_timeout"});
+  auto read = [&](const char* key, Dimension dim, double& out) {
+    optional(n, key,
+             [&](const YAML::Node& v) { out = quantity(v, dim, std::string("safety.") + key); });
+  };
+  read("max_input_speed", Dimension::kAngularSpeed, l.max_input_speed_rad_s);
+  read("max_brake_current", Dimension::kCurrent, l.max_brake_current_a);
+  read("max_brake_torque", Dimension::kTorque, l.max_brake_torque_nm);
+  read("max_measured_torque", Dimension::kTorque, l.max_measured_torque_nm);
+  read("max_following_error", Dimension::kAngle, l.max_following_error_rad);
+  read("max_coil_temperature", Dimension::kTemperature, l.max_coil_temperature_c);
+  read("max_te_excursion", Dimension::kAngle, l.max_te_excursion_rad);
+  read("heartbeat_timeout", Dimension::kTime, l.heartbeat_timeout_s);
+  read("modbus_link_timeout", Dimension::kTime, l.modbus_link_timeout_s);
+}
+
+void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::path& base) {
+  check_keys(n, "simulated", {"true_gear", "simbench"});
+  SimulatedSettings s;
+  s.true_gear_case =
+      std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml";
+  optional(n, "true_gear", [&](const YAML::Node& g) {
+    check_keys(g, "simulated.true_gear",
+               {"case", "te_amplitude_scale", "te_phase_shift", "stiffness_scale", "backlash"});
+    optional(g, "case", [&](const YAML::Node& v) {
+      s.true_gear_case = resolve(base, text(v, "simulated.true_gear.case"));
+    });
+    optional(g, "te_amplitude_scale", [&](const YAML::Node& v) {
+      s.variation.te_amplitude_scale = number(v, "simulated.true_gear.te_amplitude_scale", 0, 100);
+    });
+    optional(g, "te_phase_shift", [&](const YAML::Node& v) {
+      s.variation.te_phase_shift_rad =
+          quantity(v, Dimension::kAngle, "simulated.true_gear.te_phase_shift");
+    });
+    optional(g, "stiffness_scale", [&](const YAML::Node& v) {
+      s.variation.stiffness_scale = number(v, "simulated.true_gear.stiffness_scale", 1e-3, 1e3);
+    });
+    optional(g, "backlash", [&](const YAML::Node& v) {
+      s.variation.backlash_rad = quantity(v, Dimension::kAngle, "simulated.true_gear.backlash");
+    });
+  });
+  optional(n, "simbench", [&](const YAML::Node& v) {
+    YAML::Node wrapper;
+    wrapper["simbench"] = v;
+    std::ostringstream out;
+    out << wrapper;
+    try {
+      s.devices = simdevices::parse_simulated_bench_config(out.str(), s.devices);
+    } catch (const std::invalid_argument& e) {
+      throw ConfigError("simulated.simbench", scalar_text(v), e.what());
+    }
+  });
+  c.simulated = std::move(s);
+}
+
+}  // namespace
+
+BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesystem::path& base_dir,
+                               const std::string& source) {
+  BenchConfig c;
+  c.source = source;
+  c.text = yaml_text;
+  c.description.name = "bench";
+  c.description.sense = {100, 1};
+  c.description.rated_torque_nm = 100;
+  c.description.twin_case_path =
+      (std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml").string();
+  c.brake.link.endpoint.port = 1502;
+  try {
+    YAML::Node root;
+    try {
+      root = YAML::Load(yaml_text);
+    } catch (const YAML::Exception& e) {
+      throw ConfigError("(file)", e.what(), "valid YAML");
+    }
+    if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+    check_keys(root, "",
+               {"name", "unit_serial", "rated_torque", "gear", "sync_period", "clock", "twin_case",
+                "can", "drive", "encoder", "torque_sensor", "brake", "safety", "simulated"});
+    read_top(root, c, base_dir);
+    optional(root, "can", [&](const YAML::Node& n) { read_can(n, c.can); });
+    read_devices(root, c);
+    optional(root, "brake", [&](const YAML::Node& n) {
+      try {
+        c.brake = modbus::load_brake_config(n);
+      } catch (const modbus::BrakeConfigError& e) {
+        throw ConfigError("brake", scalar_text(n), e.what());
+      }
+    });
+    optional(root, "safety", [&](const YAML::Node& n) { read_safety(n, c.description.limits); });
+    if (c.description.limits.modbus_link_timeout_s > 0) {
+      c.brake.link.link_loss_timeout =
+          std::chrono::milliseconds(std::lround(c.description.limits.modbus_link_timeout_s * 1e3));
+    }
+    optional(root, "simulated", [&](const YAML::Node& n) { read_simulated(n, c, base_dir); });
+    if (c.in_process() && !c.simulated)
+      read_simulated(YAML::Node(YAML::NodeType::Map), c, base_dir);
+
+    auto& d = c.description;
+    d.simulated_clock = c.clock == BenchClockKind::kSimulated;
+    d.max_brake_torque_nm = c.brake.limits.max_torque_nm;
+    d.input_encoder_resolution_rad = 2 * M_PI / c.drive.counts_per_revolution;
+    d.output_encoder_noise_rad = c.encoder.noise_rad;
+    d.torque_noise_nm = c.torque_sensor.noise_nm;
+    try {
+      d.twin_gear = config::load_twin_case(d.twin_case_path).gear;
+    } catch (const ConfigError& e) {
+      throw ConfigError("twin_case", d.twin_case_path, std::string("a twin case: ") + e.what());
+    }
+    if (std::abs(d.twin_gear.geometry.ratio - d.sense.ratio) > 1e-9 * d.sense.ratio) {
+      throw ConfigError("gear.ratio", std::to_string(d.sense.ratio),
+                        "the twin case's ratio " + std::to_string(d.twin_gear.geometry.ratio));
+    }
+  } catch (const ConfigError& e) {
+    throw e.with_source(source);
+  }
+  return c;
+}
+
+BenchConfig load_bench_config(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw ConfigError("(file)", path.string(), "a readable bench config file");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  return parse_bench_config(buffer.str(), path.parent_path(), path.string());
+}
+
+BenchConfig default_simulated_bench_config() {
+  return load_bench_config(std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "benches" / "sim.yaml");
+}
+
+BenchConfig bench_config_from_argument(const std::string& sim_or_path) {
+  if (sim_or_path.empty() || sim_or_path == "sim") return default_simulated_bench_config();
+  return load_bench_config(sim_or_path);
+}
+
+}  // namespace wavebench::bench

@@ -1,0 +1,108 @@
+// Bench configs: the shipped files load, values carry units, errors name key, value, expected.
+#include "wavebench/bench/bench_config.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "wavebench/config/config_error.hpp"
+
+namespace wavebench::bench {
+namespace {
+
+const std::filesystem::path kConfigs = std::filesystem::path(WAVEBENCH_SOURCE_DIR) / "configs";
+
+TEST(BenchConfig, DefaultSimulatedBenchLoads) {
+  const auto c = default_simulated_bench_config();
+  EXPECT_TRUE(c.in_process());
+  EXPECT_EQ(c.clock, BenchClockKind::kSimulated);
+  EXPECT_TRUE(c.description.simulated_clock);
+  EXPECT_DOUBLE_EQ(c.description.sync_period_s, 1e-3);
+  EXPECT_DOUBLE_EQ(c.description.sense.ratio, 100);
+  EXPECT_EQ(c.description.sense.direction_sign, 1);
+  EXPECT_DOUBLE_EQ(c.description.twin_gear.geometry.ratio, 100);
+  EXPECT_EQ(c.can.drive_node, 1);
+  EXPECT_EQ(c.can.encoder_node, 3);
+  EXPECT_EQ(c.can.torque_node, 4);
+  EXPECT_EQ(c.torque_sensor.sensor.index, 0x6130);
+  EXPECT_EQ(c.torque_sensor.sensor.sub, 1);
+  EXPECT_NEAR(c.description.output_encoder_noise_rad, 0.5 / 3600 * M_PI / 180, 1e-12);
+  EXPECT_NEAR(c.description.limits.max_input_speed_rad_s, 3000 * 2 * M_PI / 60, 1e-9);
+  EXPECT_NEAR(c.description.limits.max_te_excursion_rad, 30.0 / 60 * M_PI / 180, 1e-12);
+  EXPECT_DOUBLE_EQ(c.description.limits.heartbeat_timeout_s, 0.5);
+  EXPECT_EQ(c.brake.link.link_loss_timeout, std::chrono::milliseconds(1000));
+  ASSERT_TRUE(c.simulated.has_value());
+  EXPECT_TRUE(std::filesystem::exists(c.simulated->true_gear_case));
+  EXPECT_DOUBLE_EQ(c.simulated->variation.stiffness_scale, 0.96);
+  EXPECT_FALSE(c.text.empty());
+}
+
+TEST(BenchConfig, VcanSimbenchConfigLoads) {
+  const auto c = load_bench_config(kConfigs / "benches" / "vcan-simbench.yaml");
+  EXPECT_FALSE(c.in_process());
+  EXPECT_EQ(c.can.interface, "vcan0");
+  EXPECT_EQ(c.brake.link.endpoint.port, 1502);
+  EXPECT_EQ(c.brake.link.endpoint.host, "127.0.0.1");
+  EXPECT_FALSE(c.encoder.counts_per_turn.has_value());
+  EXPECT_FALSE(c.simulated.has_value());
+}
+
+TEST(BenchConfig, ArgumentSimMeansTheDefault) {
+  EXPECT_EQ(bench_config_from_argument("sim").description.name, "sim");
+}
+
+config::ConfigError parse_error(const std::string& yaml) {
+  try {
+    parse_bench_config(yaml, kConfigs / "benches", "test.yaml");
+  } catch (const config::ConfigError& e) {
+    return e;
+  }
+  ADD_FAILURE() << "no error for:\n" << yaml;
+  return config::ConfigError("", "", "");
+}
+
+TEST(BenchConfig, ErrorsNameKeyValueAndExpectation) {
+  auto e = parse_error("sync_period: 1 parsec\n");
+  EXPECT_EQ(e.key(), "sync_period");
+  EXPECT_EQ(e.source(), "test.yaml");
+
+  e = parse_error("sync_period: \"3 N*m\"\n");
+  EXPECT_EQ(e.key(), "sync_period");
+
+  e = parse_error("clock: fast\n");
+  EXPECT_EQ(e.key(), "clock");
+  EXPECT_EQ(e.value(), "fast");
+  EXPECT_NE(e.expected().find("real or simulated"), std::string::npos);
+
+  e = parse_error("colck: real\n");
+  EXPECT_EQ(e.key(), "colck");
+
+  e = parse_error("can: {nodes: {drive: 200}}\n");
+  EXPECT_EQ(e.key(), "can.nodes.drive");
+  EXPECT_EQ(e.value(), "200");
+
+  e = parse_error("can: {nodes: {drive: 3}}\n");
+  EXPECT_EQ(e.key(), "can.nodes");
+
+  e = parse_error("torque_sensor: {object: \"0x61zz:1\"}\n");
+  EXPECT_EQ(e.key(), "torque_sensor.object");
+
+  e = parse_error("safety: {max_input_speed: \"3 A\"}\n");
+  EXPECT_EQ(e.key(), "safety.max_input_speed");
+
+  e = parse_error("gear: {ratio: 50}\ntwin_case: ../twin/bench-unit-seed004.yaml\n");
+  EXPECT_EQ(e.key(), "gear.ratio");
+
+  e = parse_error("brake: {link: {endpoint: \"udp:1\"}}\n");
+  EXPECT_EQ(e.key(), "brake");
+  EXPECT_NE(std::string(e.what()).find("link.endpoint"), std::string::npos) << e.what();
+}
+
+TEST(BenchConfig, SafetyModbusTimeoutSetsTheLinkLossTimeout) {
+  const auto c =
+      parse_bench_config("safety: {modbus_link_timeout: \"250 ms\"}\n", kConfigs / "benches", "t");
+  EXPECT_EQ(c.brake.link.link_loss_timeout, std::chrono::milliseconds(250));
+}
+
+}  // namespace
+}  // namespace wavebench::bench
