@@ -172,3 +172,28 @@ TEST_F(RunExecutorTest, BadRequestsNameTheKeyAndCreateNothing) {
 
 }  // namespace
 }  // namespace wavebench::runs
+
+namespace wavebench::runs {
+namespace {
+
+TEST_F(RunExecutorTest, TheTwinRunsBesideAndTheReportIsWritten) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  auto request = small_static();
+  request.twin = true;
+  request.report = true;
+  // Calibration replays the twin over the whole run: minutes, the twin's own tests cover it.
+  request.options["calibrate_twin"] = false;
+  const auto out = execute_run(bench, *store_, request);
+  ASSERT_EQ(out.status, storage::RunStatus::kComplete);
+  ASSERT_TRUE(out.results.contains("twin"));
+  EXPECT_FALSE(out.results["twin"].contains("error")) << out.results["twin"]["error"];
+  EXPECT_TRUE(fs::exists(out.dir / "twin.csv"));
+  EXPECT_EQ(out.results["twin"]["samples_received"], out.results["acquisition"]["samples_logged"]);
+  EXPECT_TRUE(out.results["twin"].contains("residual"));
+  ASSERT_TRUE(out.results.contains("report")) << out.results.value("report_error", "");
+  EXPECT_TRUE(fs::exists(out.dir / "report.html"));
+}
+
+}  // namespace
+}  // namespace wavebench::runs
