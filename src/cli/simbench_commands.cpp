@@ -103,7 +103,8 @@ int run_simbench(const SimbenchOptions& o) {
   bench.stop();
   if (brake) brake->stop();
   std::cerr << "wavebench simbench: stopped at t = " << bench.now() << " s, " << bench.frames_sent()
-            << " frames sent, " << bench.send_errors() << " send errors\n";
+            << " frames sent, " << bench.send_errors() << " send errors, " << bench.real_time_slip()
+            << " s behind real time (machine too slow)\n";
   return 0;
 }
 

@@ -61,7 +61,7 @@ class SimbenchProcess : public ::testing::Test {
 
 TEST_F(SimbenchProcess, BootsThreeNodesAndServesTheMaster) {
   ASSERT_EQ(booted, (std::set<std::uint32_t>{0x701, 0x703, 0x704}));
-  wavebench::canopen::SdoClient sdo(*bus, 1, 2000ms);
+  wavebench::canopen::SdoClient sdo(*bus, 1, 10000ms);  // generous: emulated, loaded
   const auto name = sdo.upload(0x1008, 0);
   EXPECT_EQ(std::string(name.begin(), name.end()), "WB-SIM servo drive");
   wavebench::canopen::Cia402Drive drive(sdo, {.state_timeout = 10000ms});

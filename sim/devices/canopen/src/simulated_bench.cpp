@@ -65,8 +65,21 @@ void SimulatedBench::schedule_tick() {
 }
 
 void SimulatedBench::follow_real_time() {
-  const double real = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
-  if (real > now_) advance(real - now_);
+  // A machine too slow for real time (emulation, a loaded core) must not spiral: catching up a
+  // growing backlog in one go would starve the bus of replies. Past a bounded catch-up the
+  // simulated clock slips behind the wall clock instead, and the slip is counted.
+  constexpr double kMaxCatchUp = 0.02;  // [s]
+  const auto wall = std::chrono::steady_clock::now();
+  const double real = std::chrono::duration<double>(wall - t0_).count();
+  double lag = real - now_;
+  if (lag > kMaxCatchUp) {
+    const double slip = lag - kMaxCatchUp;
+    t0_ += std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(slip));
+    real_time_slip_ += slip;
+    lag = kMaxCatchUp;
+  }
+  if (lag > 0) advance(lag);
 }
 
 void SimulatedBench::handle(const can::Frame& frame) noexcept {

@@ -62,6 +62,8 @@ class SimulatedBench {
   const SimulatedBenchConfig& config() const noexcept { return config_; }
   std::uint64_t frames_sent() const noexcept { return frames_sent_; }
   std::uint64_t send_errors() const noexcept { return send_errors_; }
+  // Real-time clock only: simulated time the bench gave up because it could not keep up [s].
+  double real_time_slip() const noexcept { return real_time_slip_; }
 
  private:
   void handle(const can::Frame& frame) noexcept;
@@ -84,6 +86,7 @@ class SimulatedBench {
   std::uint64_t send_errors_ = 0;
   bool running_ = false;
   std::chrono::steady_clock::time_point t0_{};
+  double real_time_slip_ = 0;
   boost::asio::steady_timer timer_;
   can::CanBus::Subscription subscription_;
 };
