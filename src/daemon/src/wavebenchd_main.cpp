@@ -104,8 +104,10 @@ int main(int argc, char** argv) {
   app.add_option("--config", options.config,
                  "bench config (YAML), or 'sim' for the in-process simulated bench")
       ->required();
-  app.add_option("--runs", runs_dir, "runs folder (run folders and the SQLite index)", true);
-  app.add_option("--listen", listen, "HOST:PORT of the API (port 0: any free port)", true);
+  app.add_option("--runs", runs_dir, "runs folder (run folders and the SQLite index)")
+      ->capture_default_str();
+  app.add_option("--listen", listen, "HOST:PORT of the API (port 0: any free port)")
+      ->capture_default_str();
   app.add_option("--token-file", token_file,
                  "token for requests that move hardware (created 0600 if missing; default "
                  "$WAVEBENCH_TOKEN_FILE or ~/.config/wavebench/daemon.token)");
