@@ -248,6 +248,11 @@ void CanopenBench::start_acquisition() {
     lateness_.add(std::chrono::duration<double>(tick.sent - tick.deadline).count());
     if (tick_hook_) tick_hook_(tick);
     finish_cycle();
+    // The SYNC's send time on the clock of receive timestamps: a frame received before it
+    // belongs to an earlier cycle, however late it is processed.
+    sync_sent_wall_ =
+        std::chrono::system_clock::now() -
+        std::chrono::duration_cast<std::chrono::system_clock::duration>(Clock::now() - tick.sent);
     sync_index_ = tick.index;
     begin_cycle(tick.index,
                 std::chrono::duration_cast<std::chrono::nanoseconds>(tick.sent - t0_).count());
@@ -301,7 +306,9 @@ void CanopenBench::send_simulated_sync() noexcept {
 }
 
 void CanopenBench::on_pdo(unsigned which, const can::Frame& frame) noexcept {
-  if (!assembler_ || !assembler_->open()) {
+  if (!assembler_ || !assembler_->open() ||
+      (!config_.description.simulated_clock && frame.timestamp.time_since_epoch().count() != 0 &&
+       frame.timestamp < sync_sent_wall_)) {
     ++stats_.late_frames;
     return;
   }
@@ -395,6 +402,11 @@ void CanopenBench::on_heartbeat_frame(const can::Frame& frame) noexcept {
 
 void CanopenBench::trip(const std::string& reason) noexcept {
   if (tripped_) return;
+  if (!acquiring_ && lifecycle_ == BenchLifecycle::kUnconfigured) {
+    spdlog::warn("bench '{}': {} (not connected: nothing to stop)", config_.description.name,
+                 reason);
+    return;
+  }
   tripped_ = true;
   {
     std::lock_guard lock(reason_mutex_);

@@ -152,7 +152,8 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
 
   bool acquiring_ = false;
   std::chrono::steady_clock::time_point t0_{};
-  std::uint64_t sync_index_ = 0;  // the open (or last) cycle's SYNC index
+  std::uint64_t sync_index_ = 0;                            // the open (or last) cycle's SYNC index
+  std::chrono::system_clock::time_point sync_sent_wall_{};  // real clock: the open cycle's SYNC
   boost::asio::steady_timer cycle_timer_;
   std::uint64_t cycle_generation_ = 0;
   std::map<canopen::NodeId, double> last_heartbeat_;  // bench time, simulated clock
