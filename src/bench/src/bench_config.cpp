@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -362,6 +363,8 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
     auto& d = c.description;
     d.simulated_clock = c.clock == BenchClockKind::kSimulated;
     d.max_brake_torque_nm = c.brake.limits.max_torque_nm;
+    if (d.limits.max_brake_torque_nm > 0)
+      d.max_brake_torque_nm = std::min(d.max_brake_torque_nm, d.limits.max_brake_torque_nm);
     d.input_encoder_resolution_rad = 2 * M_PI / c.drive.counts_per_revolution;
     d.output_encoder_noise_rad = c.encoder.noise_rad;
     d.torque_noise_nm = c.torque_sensor.noise_nm;

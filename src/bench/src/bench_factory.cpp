@@ -48,26 +48,8 @@ class ForwardingBench : public Bench {
 class InProcessSimulatedBench final : public ForwardingBench, public SimulatedBenchAccess {
  public:
   explicit InProcessSimulatedBench(const BenchConfig& source) : config_(source) {
-    true_gear_ = true_gear_from(config_);
-    auto devices = config_.simulated->devices;
-    devices.gear = true_gear_;
-    devices.clock = config_.description.simulated_clock ? simdevices::BenchClock::kSyncDriven
-                                                        : simdevices::BenchClock::kRealTime;
-    devices.sync_period = config_.description.sync_period_s;
-    devices.drive.node_id = config_.can.drive_node;
-    devices.drive.counts_per_revolution = config_.drive.counts_per_revolution;
-    devices.encoder.node_id = config_.can.encoder_node;
-    if (config_.encoder.counts_per_turn)
-      devices.encoder.single_turn_resolution = *config_.encoder.counts_per_turn;
-    if (config_.encoder.turns)
-      devices.encoder.revolutions = static_cast<std::uint16_t>(*config_.encoder.turns);
-    if (config_.encoder.noise_rad > 0) devices.encoder.noise_rad = config_.encoder.noise_rad;
-    devices.torque_sensor.node_id = config_.can.torque_node;
-    devices.torque_sensor.index = config_.torque_sensor.sensor.index;
-    devices.torque_sensor.sub = config_.torque_sensor.sensor.sub;
-    devices.torque_sensor.scale_nm_per_unit = config_.torque_sensor.sensor.scale;
-    if (config_.torque_sensor.noise_nm > 0)
-      devices.torque_sensor.noise_nm = config_.torque_sensor.noise_nm;
+    auto devices = simulated_devices_from(config_);
+    true_gear_ = devices.gear;
     encoder_noise_ = devices.encoder.noise_rad;
     torque_noise_ = devices.torque_sensor.noise_nm;
 
@@ -170,6 +152,29 @@ void scale_stiffness(model::StiffnessLaw& law, double s) {
 }
 
 }  // namespace
+
+simdevices::SimulatedBenchConfig simulated_devices_from(const BenchConfig& config) {
+  auto devices = config.simulated->devices;
+  devices.gear = true_gear_from(config);
+  devices.clock = config.description.simulated_clock ? simdevices::BenchClock::kSyncDriven
+                                                     : simdevices::BenchClock::kRealTime;
+  devices.sync_period = config.description.sync_period_s;
+  devices.drive.node_id = config.can.drive_node;
+  devices.drive.counts_per_revolution = config.drive.counts_per_revolution;
+  devices.encoder.node_id = config.can.encoder_node;
+  if (config.encoder.counts_per_turn)
+    devices.encoder.single_turn_resolution = *config.encoder.counts_per_turn;
+  if (config.encoder.turns)
+    devices.encoder.revolutions = static_cast<std::uint16_t>(*config.encoder.turns);
+  if (config.encoder.noise_rad > 0) devices.encoder.noise_rad = config.encoder.noise_rad;
+  devices.torque_sensor.node_id = config.can.torque_node;
+  devices.torque_sensor.index = config.torque_sensor.sensor.index;
+  devices.torque_sensor.sub = config.torque_sensor.sensor.sub;
+  devices.torque_sensor.scale_nm_per_unit = config.torque_sensor.sensor.scale;
+  if (config.torque_sensor.noise_nm > 0)
+    devices.torque_sensor.noise_nm = config.torque_sensor.noise_nm;
+  return devices;
+}
 
 model::GearParams true_gear_from(const BenchConfig& config) {
   if (!config.simulated)

@@ -9,6 +9,7 @@
 #include "wavebench/model/gear_params.hpp"
 
 namespace wavebench::simdevices {
+struct SimulatedBenchConfig;
 class SimulatedBench;
 class BrakeServer;
 }  // namespace wavebench::simdevices
@@ -35,6 +36,10 @@ class SimulatedBenchAccess {
 
 // The simulated unit's true gear: the case named in simulated.true_gear, varied as configured.
 model::GearParams true_gear_from(const BenchConfig& config);
+// The simulated devices of a simulated bench config (true gear, nodes, resolutions, noise, clock),
+// the same for the in-process bench and `wavebench simbench --bench-config`. Throws
+// config::ConfigError when the config has no simulated section.
+simdevices::SimulatedBenchConfig simulated_devices_from(const BenchConfig& config);
 
 // In-process: an io_context, a virtual CAN bus, the simulated devices (SYNC-driven on the
 // simulated clock, real time otherwise) and the brake controller on loopback TCP, coupled to
