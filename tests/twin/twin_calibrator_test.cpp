@@ -120,3 +120,29 @@ TEST(TwinCalibration, StaticRunEstimateSeedsBacklashAndStiffness) {
 
 }  // namespace
 }  // namespace wavebench::twin
+
+namespace wavebench::twin {
+namespace {
+
+TEST(TwinCalibration, AnEncoderZeroOffsetBecomesATeOffsetNotATwist) {
+  // The output encoder's zero is arbitrary on a bench (here 0.01 rad, 34 arcmin): the twin
+  // must not read it as a twist, the calibration fits it as a TE offset.
+  const auto& run = calibration_run();
+  std::vector<storage::SyncSample> samples(run.samples.begin(), run.samples.begin() + 5200);
+  const double offset = 0.01;
+  for (auto& s : samples) s.theta_out_rad += offset;
+  const auto gear = testing::true_gear();
+  const auto points = replay_twin(gear, testing::sense_of(gear), samples);
+  for (std::size_t i = 0; i < points.size(); i += 500) {
+    EXPECT_NEAR(points[i].predicted_te_rad, run.true_te_rad[i], 5 * testing::kArcsec) << i;
+  }
+  analysis::SpectrumAnalyser analyser;
+  const auto cal = calibrate_twin(gear, testing::sense_of(gear), samples, analyser);
+  EXPECT_NEAR(cal.before.mean_arcsec, offset / testing::kArcsec, 1.0);
+  EXPECT_LE(cal.after.rms_arcsec, 1.1 * run.noise_floor_arcsec);
+  EXPECT_EQ(std::find(cal.fitted.begin(), cal.fitted.end(), "stiffness"), cal.fitted.end());
+  EXPECT_DOUBLE_EQ(cal.stiffness_factor, 1.0);
+}
+
+}  // namespace
+}  // namespace wavebench::twin

@@ -15,6 +15,7 @@ namespace wavebench::twin {
 namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+constexpr double kStartMarginRad = 1e-4;  // ~20 arcsec beyond the clearance
 
 // The gear model plus the measured load torque on the output: the model's own load is zero
 // here, so the measured torque T enters as −T/J2 in ω2' and +T/J2 in the twist rate's rate
@@ -160,11 +161,17 @@ struct MeasuredDriveTwin::Impl {
     d = preload.initial_discrete();
     scale.assign(y.size(), 1.0);
     preload.error_scale(scale);
+    // Start from the measured output when it is where the gear can be (within the clearance
+    // of the model's steady state, plus a margin): at rest inside the backlash only the
+    // measurement knows where the output floats. An encoder zero offset (any size on a real
+    // bench) would otherwise become a twist; the calibration fits it as a TE offset.
     const double te0 = points[drive[0].point].measured_te_rad;
+    const auto twist = static_cast<std::size_t>(preload.layout().twist);
     if (options.start_from_measured_output && std::isfinite(te0)) {
       // q = θ1/N − θ2 with θ2 as measured: θ2 = TE + θ_in/N.
-      y[static_cast<std::size_t>(preload.layout().twist)] =
-          -te0 + (drive[0].theta1 - drive[0].theta1_raw) / preload.ratio();
+      const double q = -te0 + (drive[0].theta1 - drive[0].theta1_raw) / preload.ratio();
+      const double margin = 0.5 * params.backlash.total_rad + kStartMarginRad;
+      if (std::abs(q - y[twist]) <= margin) y[twist] = q;
     }
     // The output follows the TE lines below its own mode and not those above (the mesh): start
     // it so, else it rings at the mode from the first sample (the model's initial state has

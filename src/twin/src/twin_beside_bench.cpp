@@ -35,9 +35,13 @@ TwinBesideBench::~TwinBesideBench() {
 }
 
 void TwinBesideBench::on_sample(const storage::SyncSample& sample) noexcept {
-  received_.fetch_add(1, std::memory_order_relaxed);
+  // The sample's own index is the log's (assigned on append, 0 before): number them here, in
+  // arrival order, which is the log's order too.
+  const std::uint64_t sequence = received_.fetch_add(1, std::memory_order_relaxed);
   newest_time_ns_.store(sample.receive_time_ns, std::memory_order_relaxed);
-  if (stopping_.load(std::memory_order_relaxed) || !ring_.try_push(twin_input(sample))) {
+  TwinSampleInput input = twin_input(sample);
+  input.index = sequence;
+  if (stopping_.load(std::memory_order_relaxed) || !ring_.try_push(input)) {
     dropped_.fetch_add(1, std::memory_order_relaxed);
     return;
   }

@@ -137,6 +137,18 @@ double nominal_twist(const model::StiffnessParams& s, double torque) {
   return 0.5 * (lo + hi);
 }
 
+// Span between the q and 1 − q quantiles.
+double percentile_span(std::vector<double> v, double q) {
+  if (v.empty()) return 0;
+  const auto at = [&](double f) {
+    const auto k = static_cast<std::size_t>(f * static_cast<double>(v.size() - 1));
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+    return v[k];
+  };
+  const double lo = at(q);
+  return at(1 - q) - lo;
+}
+
 struct Replay {
   model::GearParams params;
   std::vector<TwinPoint> points;
@@ -202,7 +214,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   const auto candidates = candidate_orders(nominal, options.extra_orders);
   for (int pass = 0; pass < options.passes; ++pass) {
     // Rows with everything the fit needs.
-    std::vector<double> th1, th2, target, flank, twist;
+    std::vector<double> th1, th2, target, flank, twist, torque;
     const double half = 0.5 * params.backlash.total_rad;
     for (const auto& p : current.points) {
       if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
@@ -214,6 +226,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       target.push_back(p.predicted_te_rad - p.measured_te_rad);  // δe + flank·δb/2 + ε·x
       flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
       twist.push_back(p.spring_twist_rad);
+      torque.push_back(p.gear_torque_nm);
     }
     const std::size_t n = target.size();
     if (n == 0) break;
@@ -237,9 +250,8 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       regressors.push_back(flank);
       names.push_back("backlash");
     }
-    const auto [xmin, xmax] = std::minmax_element(twist.begin(), twist.end());
     double twist_scale = 0;
-    if (*xmax - *xmin >= options.min_twist_span_rad) {
+    if (percentile_span(torque, 0.02) >= options.min_torque_span_nm) {
       double squares = 0;
       for (double v : twist) squares += v * v;
       twist_scale = std::sqrt(squares / static_cast<double>(n));

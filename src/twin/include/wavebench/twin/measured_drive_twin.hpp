@@ -35,7 +35,8 @@ struct TwinSolverOptions {
   double rtol = 1e-6;
   double atol = 1e-9;   // times the model's characteristic sizes
   double max_step = 0;  // [s] 0 = no limit
-  // Start the output where the first sample measured it (else at the model's steady state).
+  // Start the output where the first sample measured it when that lies within the clearance
+  // (plus ~20 arcsec) of the model's steady state, else at the steady state.
   bool start_from_measured_output = true;
   // The drive (θ_in and torque) goes through a centred Savitzky–Golay smoother (quadratic,
   // 2·k + 1 samples; 0 = off) before it moves the model: the sensors' noise is not motion, and

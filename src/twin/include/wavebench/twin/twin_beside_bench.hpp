@@ -37,7 +37,8 @@
 namespace wavebench::twin {
 
 struct TwinBesideBenchOptions {
-  std::size_t queue_capacity = 1u << 16;  // samples (65 s at 1 kHz)
+  // Samples (262 s at 1 kHz, 12 MB): room for the simulated clock outrunning the twin.
+  std::size_t queue_capacity = 1u << 18;
   TwinSolverOptions solver;
 };
 
@@ -49,7 +50,9 @@ struct TwinLag {
 };
 
 struct TwinRunReport {
-  std::vector<TwinPoint> points;  // one per sample the twin received, in order
+  // One per sample the twin took, in order; index = arrival number (0, 1, ...), the sample
+  // log's index when every sample goes to the log; a dropped sample leaves a gap.
+  std::vector<TwinPoint> points;
   std::uint64_t samples_received = 0;
   std::uint64_t samples_dropped = 0;  // queue full
   std::uint64_t samples_predicted = 0;

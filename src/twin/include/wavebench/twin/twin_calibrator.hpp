@@ -8,7 +8,7 @@
 //   - the backlash (regressor: the contact flank ±1/2, fitted only when both flanks carry
 //     samples),
 //   - the stiffness (regressor: the twin's spring twist x; k → k/(1 + ε)), fitted only when
-//     the twist varies over the run.
+//     the gear torque varies over the run (several loads).
 // TE = −e − Δ with Δ = x + flank·b/2 makes the residual linear in all of them. A static run's
 // estimate_stiffness_backlash() (when given) sets the starting backlash and stiffness. The fit
 // and replay repeat `passes` times (the contact and twist move with the parameters); the
@@ -38,8 +38,9 @@ struct TwinCalibrationOptions {
   double min_phase_span_rad = 6.283185307179586;
   // Backlash is fitted only when each flank holds this fraction of the samples.
   double min_flank_fraction = 0.05;
-  // Stiffness is fitted only when the spring twist spans this much [rad] (~1 arcsec).
-  double min_twist_span_rad = 5e-6;
+  // Stiffness is fitted only when the gear torque (2nd to 98th percentile) spans this much:
+  // at one load the twist is confounded with the TE offset.
+  double min_torque_span_nm = 5;
 };
 
 struct TwinCalibration {
