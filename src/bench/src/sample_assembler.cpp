@@ -1,5 +1,7 @@
 #include "wavebench/bench/sample_assembler.hpp"
 
+#include <numbers>
+
 #include "wavebench/canopen/cob_id.hpp"
 
 namespace wavebench::bench {
@@ -79,7 +81,10 @@ bool SampleAssembler::on_encoder(const can::Frame& frame) {
   if (frame.len < 4 || !take(kEncoder)) return false;
   const std::uint32_t raw = frame.data[0] | frame.data[1] << 8 | frame.data[2] << 16 |
                             static_cast<std::uint32_t>(frame.data[3]) << 24;
-  sample_.theta_out_rad = encoder_.on_position(raw);
+  // A CiA 406 position value is the count whose interval holds the angle (truncated): its
+  // centre, half a count up, is the unbiased angle.
+  sample_.theta_out_rad = encoder_.on_position(raw) +
+                          std::numbers::pi / static_cast<double>(encoder_.counts_per_turn());
   sample_.flags |= storage::kThetaOutValid;
   return true;
 }
