@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
 
 namespace wavebench::bench {
@@ -33,7 +34,7 @@ TEST(BenchConfig, DefaultSimulatedBenchLoads) {
   EXPECT_EQ(c.brake.link.link_loss_timeout, std::chrono::milliseconds(1000));
   ASSERT_TRUE(c.simulated.has_value());
   EXPECT_TRUE(std::filesystem::exists(c.simulated->true_gear_case));
-  EXPECT_DOUBLE_EQ(c.simulated->variation.stiffness_scale, 0.96);
+  EXPECT_EQ(c.simulated->true_gear_case.filename(), "sim-true-gear.yaml");
   EXPECT_FALSE(c.text.empty());
 }
 
@@ -96,6 +97,35 @@ TEST(BenchConfig, ErrorsNameKeyValueAndExpectation) {
   e = parse_error("brake: {link: {endpoint: \"udp:1\"}}\n");
   EXPECT_EQ(e.key(), "brake");
   EXPECT_NE(std::string(e.what()).find("link.endpoint"), std::string::npos) << e.what();
+}
+
+// The simulated unit's truth is the twin's nominal case varied (TE x1.08 and +4 deg, stiffness
+// x0.96, backlash 0.35 arcmin), and a variation in the config varies it further.
+TEST(BenchConfig, TrueGearIsTheNominalCaseVaried) {
+  const auto c = default_simulated_bench_config();
+  const auto truth = true_gear_from(c);
+  const auto& nominal = c.description.twin_gear;
+  ASSERT_EQ(truth.te_terms.size(), nominal.te_terms.size());
+  for (std::size_t i = 0; i < truth.te_terms.size(); ++i) {
+    EXPECT_NEAR(truth.te_terms[i].amplitude_rad, 1.08 * nominal.te_terms[i].amplitude_rad, 1e-12);
+    EXPECT_NEAR(truth.te_terms[i].phase_rad - nominal.te_terms[i].phase_rad, 4 * M_PI / 180, 1e-12);
+  }
+  const auto& k_true = std::get<model::ThreeSegmentStiffness>(truth.stiffness.law);
+  const auto& k_nominal = std::get<model::ThreeSegmentStiffness>(nominal.stiffness.law);
+  EXPECT_NEAR(k_true.k1, 0.96 * k_nominal.k1, 1e-6);
+  EXPECT_NEAR(k_true.k3, 0.96 * k_nominal.k3, 1e-6);
+  EXPECT_NEAR(truth.backlash.total_rad, 0.35 / 60 * M_PI / 180, 1e-12);
+  EXPECT_DOUBLE_EQ(truth.geometry.ratio, 100);
+
+  const auto varied = parse_bench_config(
+      "simulated: {true_gear: {case: sim-true-gear.yaml, stiffness_scale: 0.5, "
+      "te_amplitude_scale: 2, backlash: \"1 arcmin\"}}\n",
+      kConfigs / "benches", "t");
+  const auto truth2 = true_gear_from(varied);
+  EXPECT_NEAR(std::get<model::ThreeSegmentStiffness>(truth2.stiffness.law).k2, 0.5 * k_true.k2,
+              1e-6);
+  EXPECT_NEAR(truth2.te_terms[0].amplitude_rad, 2 * truth.te_terms[0].amplitude_rad, 1e-12);
+  EXPECT_NEAR(truth2.backlash.total_rad, 1.0 / 60 * M_PI / 180, 1e-12);
 }
 
 TEST(BenchConfig, SafetyModbusTimeoutSetsTheLinkLossTimeout) {
