@@ -1,5 +1,6 @@
 #include "wavebench/report/run_tables.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -252,8 +253,14 @@ void add_twin_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_ce
   if (!twin) return;
   std::vector<std::pair<std::string, std::string>> entries;
   flatten(*twin, {}, 0, entries);
+  std::vector<std::string> shown;
   for (auto& [path, value] : entries) {
-    if (only_rms && path.find("rms") == std::string::npos) continue;
+    if (only_rms) {
+      // The compact view: each RMS figure once, however many places the twin reports it.
+      if (path.find("rms") == std::string::npos) continue;
+      if (std::find(shown.begin(), shown.end(), value) != shown.end()) continue;
+      shown.push_back(value);
+    }
     push(table, run_cell, {path, value});
   }
 }
