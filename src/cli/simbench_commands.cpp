@@ -11,6 +11,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "wavebench/bench/bench_config.hpp"
+#include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/can/socket_can_bus.hpp"
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/modbus/modbus_endpoint.hpp"
@@ -25,6 +27,7 @@ struct SimbenchOptions {
   std::string can_interface = "vcan0";
   std::string modbus;
   std::string config;
+  std::string bench_config;
   std::string gear;
   std::string clock;
   std::optional<int> drive_node, encoder_node, torque_node;
@@ -35,6 +38,12 @@ struct SimbenchOptions {
 simdevices::SimulatedBenchConfig build_config(const SimbenchOptions& o) {
   simdevices::SimulatedBenchConfig config;
   config.clock = simdevices::BenchClock::kRealTime;
+  if (!o.bench_config.empty()) {
+    // The same simulated unit as the in-process bench of that config (its true gear, nodes,
+    // resolutions, noise), so that runs across processes and in-process can be compared.
+    config = bench::simulated_devices_from(bench::load_bench_config(o.bench_config));
+    config.clock = simdevices::BenchClock::kRealTime;
+  }
   if (!o.config.empty()) config = simdevices::load_simulated_bench_config(o.config, config);
   if (!o.gear.empty()) config.gear = wavebench::config::load_twin_case(o.gear).gear;
   if (o.clock == "realtime") {
@@ -120,6 +129,8 @@ void register_simbench_commands(CLI::App& app, ExitStatus& status) {
   cmd->add_option("--modbus", options->modbus,
                   "also serve the simulated brake controller, e.g. tcp:127.0.0.1:1502");
   cmd->add_option("--config", options->config, "YAML with a simbench: section (node ids, ...)");
+  cmd->add_option("--bench-config", options->bench_config,
+                  "bench YAML (configs/benches/sim.yaml): serve its simulated unit and devices");
   cmd->add_option("--gear", options->gear,
                   "twin-case YAML whose gear is the bench's true gear (default: built in)");
   cmd->add_option("--clock", options->clock, "realtime (default) or sync (one cycle per SYNC)");
