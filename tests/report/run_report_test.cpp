@@ -192,6 +192,8 @@ TEST_F(RunReportTest, StaticRunTablesPlotsAndTwin) {
   EXPECT_TRUE(is_png(run.dir / "static_te.png"));
   EXPECT_TRUE(is_png(run.dir / "twin.png"));
   EXPECT_EQ(rep.plots.size(), 2u);
+  EXPECT_NE(html.find("<a href=\"samples.wbs\">samples.wbs</a>"), std::string::npos);
+  EXPECT_NE(html.find("<a href=\"results.json\">results.json</a>"), std::string::npos);
   EXPECT_FALSE(fs::exists(run.dir / ".static_te.png.tmp"));
 }
 

@@ -169,6 +169,23 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     }
   }
 
+  // The run's own files, linked so that the data behind every table is one click away.
+  HtmlTable files;
+  files.caption = "Files of the run";
+  files.header = {"file", "size [bytes]"};
+  for (const char* name : {"results.json", "status.json", "config.yaml", "samples.wbs", "twin.csv",
+                           "twin-calibrated.yaml"}) {
+    std::error_code ec;
+    const fs::path f = run_dir / name;
+    if (!fs::is_regular_file(f, ec)) continue;
+    const std::string href = fs::absolute(f).lexically_relative(fs::absolute(out)).generic_string();
+    files.rows.push_back({{name, href, false}, {std::to_string(fs::file_size(f, ec)), {}, false}});
+  }
+  if (!files.rows.empty()) {
+    page.heading("Data");
+    page.table(files);
+  }
+
   if (!run.notes.empty()) {
     page.heading("Notes");
     page.list(run.notes);
