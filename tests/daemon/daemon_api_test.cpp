@@ -209,6 +209,14 @@ TEST_F(DaemonApiTest, LiveServesTheLatestSamplesInOrderWithoutRepeats) {
   (void)id;
 }
 
+TEST_F(DaemonApiTest, BetweenRunsTheBenchKeepsAcquiringForTheLiveView) {
+  ASSERT_TRUE(eventually([&] { return client().get("/api/live").body["next"] > 100; }));
+  const auto status = client().get("/api/status").body;
+  EXPECT_EQ(status["state"], "ready");
+  EXPECT_GT(status["acquisition"]["samples"], 0);
+  EXPECT_TRUE(client().get("/api/runs").body["runs"].empty());
+}
+
 TEST(DaemonStartup, ABenchThatDoesNotConnectLeavesTheDaemonIdleWithTheReason) {
   struct Fixture : DaemonFixture {
     void TestBody() override {}

@@ -67,6 +67,11 @@ class FakeBench : public bench::Bench {
     }
     return false;
   }
+  void idle_for(double seconds) override {
+    if (state_ == bench::BenchLifecycle::kUnconfigured) return;
+    const auto n = static_cast<std::uint64_t>(seconds / description_.sync_period_s + 0.5);
+    for (std::uint64_t i = 0; i < n; ++i) acquire();
+  }
   double now() const override { return static_cast<double>(syncs_) * description_.sync_period_s; }
   const storage::SyncSample& latest_sample() const override { return latest_; }
   void add_observer(bench::SampleObserver& o) override { observers_.push_back(&o); }
@@ -97,6 +102,9 @@ class FakeBench : public bench::Bench {
   }
   void step() {
     check();
+    acquire();
+  }
+  void acquire() {
     ++syncs_;
     theta_in_ += omega_ * description_.sync_period_s;
     latest_.sync_counter = static_cast<std::uint32_t>((syncs_ - 1) % 240 + 1);

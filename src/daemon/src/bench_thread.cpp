@@ -134,26 +134,28 @@ void BenchThread::thread_main() {
 }
 
 void BenchThread::idle_until_job(std::unique_lock<std::mutex>& lock) {
+  // Between runs the bench's event loop keeps turning (heartbeats, the brake's watchdog,
+  // acquisition, the live view) at about real-time pace: on the simulated clock idle_for()
+  // returns at once, so the rest of each slice is slept.
+  constexpr auto kSlice = std::chrono::milliseconds(50);
   while (jobs_.empty() && !stopping_) {
-    const bool pump = bench_ != nullptr && connect_error_.empty() && description_ &&
-                      !description_->simulated_clock;
+    const bool pump = bench_ != nullptr && connect_error_.empty() &&
+                      bench_->state() != bench::BenchLifecycle::kUnconfigured;
     if (!pump) {
-      // A simulated clock only advances when asked, and an unconnected bench has no loop.
       wake_.wait_for(lock, std::chrono::milliseconds(200));
       continue;
     }
-    // A real bench keeps acquiring, supervising heartbeats and feeding the live view between
-    // runs: its event loop only turns inside a blocking call.
+    const auto start = std::chrono::steady_clock::now();
     lock.unlock();
-    bool tripped = false;
     try {
-      bench_->wait_for(0.05);
+      bench_->idle_for(std::chrono::duration<double>(kSlice).count());
       refresh_stats_on_bench_thread();
-    } catch (const std::exception&) {
-      tripped = true;
+    } catch (const std::exception& e) {
+      spdlog::debug("idle: {}", e.what());
     }
     lock.lock();
-    if (tripped) wake_.wait_for(lock, std::chrono::milliseconds(50));
+    const auto spent = std::chrono::steady_clock::now() - start;
+    if (spent < kSlice && jobs_.empty() && !stopping_) wake_.wait_for(lock, kSlice - spent);
   }
 }
 

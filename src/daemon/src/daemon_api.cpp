@@ -53,7 +53,14 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"incomplete_samples", a.incomplete_samples},
           {"sync_late", a.sync_late},
           {"sync_skipped", a.sync_skipped},
-          {"bus_load", a.bus_load}};
+          {"bus_load", a.bus_load},
+          {"cycles_timed_out", a.cycles_timed_out},
+          {"late_frames", a.late_frames},
+          {"sync_lateness_p50_s", a.sync_lateness_p50_s},
+          {"sync_lateness_p99_s", a.sync_lateness_p99_s},
+          {"sync_lateness_max_s", a.sync_lateness_max_s},
+          {"bench_time_s", a.bench_time_s},
+          {"real_time_s", a.real_time_s}};
 }
 
 }  // namespace
