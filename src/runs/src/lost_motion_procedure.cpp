@@ -48,7 +48,13 @@ procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSampl
 
 LostMotionOptions LostMotionOptions::from_json(const nlohmann::json& options) {
   LostMotionOptions o;
-  OptionReader r(options, "lost-motion",
+  nlohmann::json given = options;
+  // An empty explicit ladder means "use the fractions" (configs/procedures/lost-motion.yaml).
+  if (given.is_object() && given.contains("torques_nm") && given["torques_nm"].is_array() &&
+      given["torques_nm"].empty()) {
+    given.erase("torques_nm");
+  }
+  OptionReader r(given, "lost-motion",
                  {"torque_fractions", "torques_nm", "input_speed_rad_s", "run_in_output_rad",
                   "window_periods", "lost_motion_fraction", "brake_settle_s"});
   r.numbers("torque_fractions", o.torque_fractions, 0, 2, 4);

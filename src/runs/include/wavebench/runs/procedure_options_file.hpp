@@ -1,0 +1,16 @@
+#pragma once
+// Procedure options from YAML (configs/procedures/*.yaml): a mapping of option keys to
+// numbers, booleans, strings and lists, as the JSON a RunRequest carries.
+
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+namespace wavebench::runs {
+
+// Throws std::invalid_argument naming the file and what is wrong (not a mapping, bad YAML).
+nlohmann::json procedure_options_from_yaml(const std::string& yaml_text,
+                                           const std::string& source = "<string>");
+nlohmann::json load_procedure_options(const std::filesystem::path& file);
+
+}  // namespace wavebench::runs

@@ -1,0 +1,78 @@
+#include "wavebench/runs/procedure_options_file.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+
+namespace wavebench::runs {
+
+namespace {
+
+nlohmann::json scalar(const YAML::Node& n) {
+  const std::string text = n.Scalar();
+  if (n.Tag() == "!") return text;  // quoted: a string
+  if (text == "true" || text == "false") return text == "true";
+  try {
+    std::size_t used = 0;
+    const long long i = std::stoll(text, &used);
+    if (used == text.size()) return i;
+  } catch (const std::exception&) {
+  }
+  try {
+    std::size_t used = 0;
+    const double d = std::stod(text, &used);
+    if (used == text.size()) return d;
+  } catch (const std::exception&) {
+  }
+  return text;
+}
+
+nlohmann::json to_json(const YAML::Node& n) {
+  switch (n.Type()) {
+    case YAML::NodeType::Map: {
+      nlohmann::json j = nlohmann::json::object();
+      for (const auto& kv : n) j[kv.first.as<std::string>()] = to_json(kv.second);
+      return j;
+    }
+    case YAML::NodeType::Sequence: {
+      nlohmann::json j = nlohmann::json::array();
+      for (const auto& item : n) j.push_back(to_json(item));
+      return j;
+    }
+    case YAML::NodeType::Scalar:
+      return scalar(n);
+    default:
+      return nullptr;
+  }
+}
+
+}  // namespace
+
+nlohmann::json procedure_options_from_yaml(const std::string& yaml_text,
+                                           const std::string& source) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& e) {
+    throw std::invalid_argument(source + ": not YAML (" + e.what() + ")");
+  }
+  if (root.IsNull()) return nlohmann::json::object();
+  if (!root.IsMap()) {
+    throw std::invalid_argument(source + ": got a " +
+                                (root.IsSequence() ? std::string("list") : "single value") +
+                                ", expected a mapping of procedure options");
+  }
+  return to_json(root);
+}
+
+nlohmann::json load_procedure_options(const std::filesystem::path& file) {
+  std::ifstream in(file);
+  if (!in) throw std::invalid_argument(file.string() + ": cannot be read");
+  std::stringstream text;
+  text << in.rdbuf();
+  return procedure_options_from_yaml(text.str(), file.string());
+}
+
+}  // namespace wavebench::runs
