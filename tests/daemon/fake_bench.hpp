@@ -106,7 +106,7 @@ class FakeBench : public bench::Bench {
   }
   void acquire() {
     ++syncs_;
-    theta_in_ += omega_ * description_.sync_period_s;
+    theta_in_ += omega_.load() * description_.sync_period_s;
     latest_.sync_counter = static_cast<std::uint32_t>((syncs_ - 1) % 240 + 1);
     latest_.flags = storage::kAllChannelsValid;
     latest_.receive_time_ns = static_cast<std::int64_t>(syncs_) * 1'000'000;
@@ -126,7 +126,8 @@ class FakeBench : public bench::Bench {
   std::string reason_;
   std::vector<bench::SampleObserver*> observers_;
   std::atomic<std::uint64_t> syncs_{0};
-  double theta_in_ = 0, omega_ = 0;
+  double theta_in_ = 0;
+  std::atomic<double> omega_{0};  // request_stop zeroes it from another thread
   std::atomic<double> brake_{0};
   storage::SyncSample latest_;
 };
