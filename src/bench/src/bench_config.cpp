@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <set>
@@ -392,7 +393,10 @@ BenchConfig load_bench_config(const std::filesystem::path& path) {
 }
 
 BenchConfig default_simulated_bench_config() {
-  return load_bench_config(std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "benches" / "sim.yaml");
+  // An installed wavebench names its configs folder in the environment; a build tree knows it.
+  const char* dir = std::getenv("WAVEBENCH_CONFIG_DIR");
+  const std::filesystem::path configs = dir != nullptr && *dir != 0 ? dir : WAVEBENCH_CONFIG_DIR;
+  return load_bench_config(configs / "benches" / "sim.yaml");
 }
 
 BenchConfig bench_config_from_argument(const std::string& sim_or_path) {

@@ -84,7 +84,8 @@ struct BenchConfig {
 BenchConfig load_bench_config(const std::filesystem::path& path);
 BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesystem::path& base_dir,
                                const std::string& source = "<string>");
-// configs/benches/sim.yaml of the source tree (the default where no hardware is named).
+// configs/benches/sim.yaml (the default where no hardware is named) of $WAVEBENCH_CONFIG_DIR,
+// else of the source tree.
 BenchConfig default_simulated_bench_config();
 // "sim" -> the default simulated bench; anything else is a file path.
 BenchConfig bench_config_from_argument(const std::string& sim_or_path);
