@@ -117,6 +117,13 @@ void CanopenBench::connect() {
     if (!run_until([&] { return (latest_.flags & can_channels) == can_channels; }, 5.0)) {
       throw std::runtime_error("no complete sample within 5 s of bench time after SYNC started");
     }
+    // The brake's first readback comes from the supervisor's thread (real time): wait for it
+    // so that runs start on complete samples; a missing one is not fatal here.
+    const auto brake_deadline = Clock::now() + 3 * config_.brake.heartbeat.period;
+    while (!latest_.complete() && Clock::now() < brake_deadline) {
+      run_once();
+      throw_if_tripped();
+    }
   } catch (const BenchAborted& e) {
     disconnect();
     throw;
