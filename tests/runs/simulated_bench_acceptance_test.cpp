@@ -1,0 +1,175 @@
+// Issue #5 acceptance on the in-process simulated bench (CANopen on a virtual bus, the brake
+// over Modbus TCP on loopback, simulated clock): static TE, lost motion and stiffness against
+// the truth computed from the simulated unit's own parameters; dynamic TE's named peaks and
+// aliased lines; a run stopped from another thread is aborted with its samples readable.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "gear_truth.hpp"
+#include "wavebench/bench/bench_config.hpp"
+#include "wavebench/bench/bench_factory.hpp"
+#include "wavebench/runs/dynamic_te_procedure.hpp"
+#include "wavebench/runs/lost_motion_procedure.hpp"
+#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/storage/sample_log.hpp"
+
+namespace wavebench::runs {
+namespace {
+
+namespace fs = std::filesystem;
+using testing::kArcminPerRadTruth;
+
+struct Sim {
+  Sim() : bench(bench::make_simulated_bench(bench::default_simulated_bench_config())) {
+    access = bench::simulated_access(*bench);
+    bench->connect();
+  }
+  ~Sim() { bench->disconnect(); }
+  std::unique_ptr<bench::Bench> bench;
+  bench::SimulatedBenchAccess* access = nullptr;
+};
+
+struct Stats {
+  double mean = 0, p2p = 0, std = 0;
+};
+
+Stats stats(const std::vector<double>& v) {
+  Stats s;
+  for (double x : v) s.mean += x;
+  s.mean /= static_cast<double>(v.size());
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = std::sqrt(s.std / static_cast<double>(v.size()));
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  s.p2p = *hi - *lo;
+  return s;
+}
+
+TEST(SimulatedBenchAcceptance, StaticTeEveryDirectionAndLoadWithinATenthOfAnArcminOfTheTruth) {
+  Sim sim;
+  ASSERT_NE(sim.access, nullptr);
+  const auto gear = sim.access->true_gear();
+  const auto out = StaticTeProcedure(StaticTeOptions{}).run(*sim.bench);  // 24 positions, 0 and 60
+  ASSERT_EQ(out.passes.size(), 4u);
+  EXPECT_EQ(out.settle_timeouts, 0);
+  const auto& sense = sim.bench->description().sense;
+  for (std::size_t i = 0; i < out.passes.size(); ++i) {
+    const auto& pass = out.passes[i];
+    const auto& summary = out.result.passes[i];
+    const int travel = pass.direction == procedures::Direction::kForward ? 1 : -1;
+    ASSERT_EQ(pass.points.size(), 24u);
+    std::vector<double> truth;
+    for (const auto& p : pass.points) {
+      // Truth in the gear's own angles: θ2 unwrapped by whole output turns is the same angle.
+      const double theta2 = sense.model_output_angle(p.theta_out_rad);
+      truth.push_back(testing::true_static_te(gear, p.theta_in_rad, theta2,
+                                              sense.direction_sign * p.torque_nm, travel) *
+                      kArcminPerRadTruth);
+    }
+    const auto t = stats(truth);
+    std::printf("%s %4.0f N·m: mean %+.3f (truth %+.3f)  p2p %.3f (%.3f)  std %.3f (%.3f)\n",
+                procedures::direction_name(pass.direction), pass.load_nm, summary.mean_arcmin,
+                t.mean, summary.p2p_arcmin, t.p2p, summary.std_arcmin, t.std);
+    EXPECT_NEAR(summary.mean_arcmin, t.mean, 0.1);
+    EXPECT_NEAR(summary.p2p_arcmin, t.p2p, 0.1);
+    EXPECT_NEAR(summary.std_arcmin, t.std, 0.1);
+  }
+}
+
+TEST(SimulatedBenchAcceptance, LostMotionWithinTwoTenthsOfAnArcminAndStiffnessWithinFivePercent) {
+  Sim sim;
+  const auto gear = sim.access->true_gear();
+  LostMotionOptions o;
+  const auto out = LostMotionProcedure(o).run(*sim.bench);
+  const double n = sim.bench->description().sense.ratio;
+  const double losses =
+      gear.load.output_drag_coulomb + gear.viscous_output * o.input_speed_rad_s / n;
+  const double t = out.result.lost_motion_torque_nm;
+  const double truth = gear.backlash.total_rad + 2 * testing::true_twist(gear, t + losses);
+  std::printf("lost motion at %.1f N·m: %.4f arcmin (truth %.4f)\n", t,
+              out.result.lost_motion_rad * kArcminPerRadTruth, truth * kArcminPerRadTruth);
+  EXPECT_NEAR(out.result.lost_motion_rad * kArcminPerRadTruth, truth * kArcminPerRadTruth, 0.2);
+  const auto& law = std::get<model::ThreeSegmentStiffness>(gear.stiffness.law);
+  const auto& k = out.result.stiffness;
+  std::printf("K1 %.4g (%.4g)  K2 %.4g (%.4g)  K3 %.4g (%.4g)  T1 %.3g (%.3g)  T2 %.3g (%.3g)\n",
+              k.k1, law.k1, k.k2, law.k2, k.k3, law.k3, k.t1, law.t1, k.t2, law.t2);
+  EXPECT_NEAR(k.k1, law.k1, 0.05 * law.k1);
+  EXPECT_NEAR(k.k2, law.k2, 0.05 * law.k2);
+  EXPECT_NEAR(k.k3, law.k3, 0.05 * law.k3);
+}
+
+TEST(SimulatedBenchAcceptance, DynamicTeNamesOnceRevAndMeshAndListsAliasedLines) {
+  Sim sim;
+  DynamicTeOptions o;  // 100 rpm
+  o.output_revolutions = 2;
+  const auto out = DynamicTeProcedure(o).run(*sim.bench);
+  const auto& r = out.result;
+  EXPECT_NEAR(r.input_speed_hz, 100.0 / 60, 1e-3);
+  EXPECT_NEAR(r.sample_rate_hz, 1000, 1);
+  const auto near = [&](double order) -> const procedures::NamedPeak* {
+    for (const auto& p : r.peaks) {
+      if (std::abs(p.order_output - order) < 0.1) return &p;
+    }
+    return nullptr;
+  };
+  const auto* once = near(1);
+  ASSERT_NE(once, nullptr);
+  EXPECT_NE(once->name.find("1/rev"), std::string::npos) << once->name;
+  const auto* mesh = near(out.teeth.z_flex);
+  ASSERT_NE(mesh, nullptr);
+  EXPECT_NE(mesh->name, "unnamed");
+  for (const auto& p : r.peaks) {
+    std::printf("peak %-50s order %7.2f  %6.2f Hz  %.2f arcsec\n", p.name.c_str(), p.order_output,
+                p.frequency_hz, p.amplitude_arcsec);
+  }
+  bool mesh_line = false;
+  for (const auto& a : r.aliased) {
+    EXPECT_GT(a.frequency_hz, r.nyquist_hz);
+    EXPECT_LT(a.folded_hz, r.nyquist_hz + 1e-9);
+    mesh_line = mesh_line || std::abs(a.frequency_hz - 2.0 * out.teeth.z_circ * 100 / 60) < 0.5;
+    std::printf("aliased %-50s %.1f Hz -> %.1f Hz\n", a.name.c_str(), a.frequency_hz, a.folded_hz);
+  }
+  EXPECT_TRUE(mesh_line) << "2·z_C·f_H (673 Hz at 100 rpm) not listed as aliased";
+}
+
+TEST(SimulatedBenchAcceptance, AnOperatorStopMidRunAbortsWithTheReasonAndKeepsReadableSamples) {
+  Sim sim;
+  const fs::path root =
+      fs::temp_directory_path() / ("wavebench-accept-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  {
+    storage::RunStore store(root, "test");
+    RunRequest request;
+    request.procedure = "static";
+    request.options = {{"positions", 4}, {"window_s", 0.1}};
+    request.twin = false;
+    request.report = false;
+    std::atomic<bool> reverse{false};
+    std::thread operator_thread([&] {
+      while (!reverse) std::this_thread::yield();
+      sim.bench->request_stop("operator stop");
+    });
+    const auto out = execute_run(*sim.bench, store, request, [&](const RunProgress& p) {
+      if (p.phase.find("reverse") != std::string::npos) reverse = true;
+    });
+    operator_thread.join();
+    EXPECT_EQ(out.status, storage::RunStatus::kAborted);
+    EXPECT_NE(out.reason.find("operator stop"), std::string::npos) << out.reason;
+    const auto record = store.find_run(out.run_id);
+    ASSERT_TRUE(record);
+    EXPECT_EQ(record->status, storage::RunStatus::kAborted);
+    const auto log = storage::read_sample_log(store.paths(out.run_id).samples);
+    EXPECT_GT(log.samples.size(), 1000u);
+    EXPECT_FALSE(log.corrupt_record);
+    EXPECT_EQ(sim.bench->state(), bench::BenchLifecycle::kFault);
+  }
+  fs::remove_all(root);
+}
+
+}  // namespace
+}  // namespace wavebench::runs
