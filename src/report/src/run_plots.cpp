@@ -126,18 +126,28 @@ std::optional<Figure> static_te_figure(const json& passes) {
   }
   if (by_load.empty()) return std::nullopt;
   Figure fig(static_cast<int>(by_load.size()), 1, "Static TE against output angle");
+  std::optional<double> reference;  // output angle of the first point, every pass
   int row = 0;
   for (const auto& [load, group] : by_load) {
     Axes& ax = fig.axes(row++, 0);
     ax.title = "Load " + load_label(load);
-    ax.x_label = "output angle [deg]";
+    ax.x_label = "output angle from position 0 [deg]";
     ax.y_label = "TE [arcmin]";
     for (const json* pass : group) {
+      const double half_step = 180.0 / static_cast<double>((*pass)["points"].size());
       std::vector<std::pair<double, double>> pts;
       for (const auto& pt : (*pass)["points"]) {
         const auto a = number(pt, "output_angle_deg");
         const auto te = number(pt, "te_arcmin");
-        if (a && te) pts.emplace_back(*a, *te);
+        if (!a || !te) continue;
+        // TE repeats with the output revolution and the angle may be multi-turn (unwrapped):
+        // angles from position 0, within one revolution, a half step either side of it kept
+        // together (position 0 reached from either side).
+        if (!reference) reference = *a;
+        double d = std::fmod(*a - *reference, 360.0);
+        if (d < -half_step) d += 360;
+        if (d >= 360 - half_step) d -= 360;
+        pts.emplace_back(d, *te);
       }
       std::sort(pts.begin(), pts.end());
       std::vector<double> x, y;
