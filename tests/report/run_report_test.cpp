@@ -474,3 +474,34 @@ TEST(GearSenseEstimate, RecoversRatioAndSign) {
 
 }  // namespace
 }  // namespace wavebench::report
+
+namespace wavebench::report {
+namespace {
+
+TEST(StaticTeFigure, MultiTurnAnglesFromPositionZeroWithinOneRevolution) {
+  json passes = json::array();
+  for (const char* dir : {"forward", "reverse"}) {
+    json pts = json::array();
+    for (int k = 0; k < 24; ++k) {
+      // 2047 turns in, and position 0 of the reverse pass a hair below a whole turn.
+      const double a = 2047 * 360.0 + 15.0 * k + (k == 0 && dir[0] == 'r' ? -1e-3 : 0.0);
+      pts.push_back({{"position", k}, {"output_angle_deg", a}, {"te_arcmin", 0.1 * k}});
+    }
+    passes.push_back({{"direction", dir}, {"load_nm", 0}, {"points", pts}});
+  }
+  const auto fig = static_te_figure(passes);
+  ASSERT_TRUE(fig);
+  ASSERT_EQ(fig->rows(), 1);
+  int checked = 0;
+  for (const auto& s : fig->axes(0, 0).series) {
+    ASSERT_EQ(s.x.size(), 24u);
+    EXPECT_NEAR(s.x.front(), 0, 2e-3);
+    EXPECT_NEAR(s.x.back(), 345, 1e-9);
+    EXPECT_NEAR(s.y.front(), 0, 1e-12);  // position 0 first, whichever side it came from
+    ++checked;
+  }
+  EXPECT_EQ(checked, 4);  // a line and its points per direction
+}
+
+}  // namespace
+}  // namespace wavebench::report
