@@ -75,7 +75,7 @@ TEST(MeasuredDriveTwin, ChunkingDoesNotChangeThePrediction) {
   MeasuredDriveTwin twin(gear, testing::sense_of(gear));
   for (const auto& s : first) twin.push(twin_input(s));
   EXPECT_LT(twin.predicted(), first.size());      // one sample behind until flushed
-  EXPECT_GE(twin.predicted(), first.size() - 5);  // and the smoother's three
+  EXPECT_GE(twin.predicted(), first.size() - 8);  // and the torque smoother's six
   twin.flush();
   ASSERT_EQ(twin.points().size(), whole.size());
   for (std::size_t i = 0; i < whole.size(); ++i) {

@@ -16,6 +16,7 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr double kStartMarginRad = 1e-4;  // ~20 arcsec beyond the clearance
+constexpr std::size_t kShortTorqueHalfWidth = 2;
 
 // The gear model plus the measured load torque on the output: the model's own load is zero
 // here, so the measured torque T enters as −T/J2 in ω2' and +T/J2 in the twist rate's rate
@@ -103,8 +104,14 @@ struct MeasuredDriveTwin::Impl {
   TwinSolverOptions options;
   model::solver::DormandPrince45 integrator;
   std::vector<TwinPoint> points;
-  std::size_t half_width = 0;
+  std::size_t half_width = 0;  // look-ahead: the longer of the two windows
+  std::size_t angle_half_width = 0;
   std::vector<double> weights;
+  std::size_t torque_half_width = 0;
+  std::vector<double> torque_weights, short_weights;
+  double disagreement_gain = 0;  // RMS gain of (long − short window) on white noise
+  double torque_noise_squares = 0;
+  std::uint64_t torque_noise_count = 0;
   std::deque<DrivePoint> raw;  // measured drive waiting for its smoothing window
   std::uint64_t raw_front = 0, next_emit = 0;
   std::deque<DrivePoint> drive;
@@ -122,8 +129,24 @@ struct MeasuredDriveTwin::Impl {
         sense(s),
         options(o),
         integrator(model::solver::StepControl{{o.rtol, o.atol}, o.max_step, 0.0}),
-        half_width(static_cast<std::size_t>(std::max(0, o.smoothing_half_width))),
-        weights(savitzky_golay_weights(std::max(1, o.smoothing_half_width))) {}
+        half_width(static_cast<std::size_t>(
+            std::max({0, o.smoothing_half_width, o.torque_smoothing_half_width}))),
+        angle_half_width(static_cast<std::size_t>(std::max(0, o.smoothing_half_width))),
+        weights(savitzky_golay_weights(std::max(1, o.smoothing_half_width))),
+        torque_half_width(static_cast<std::size_t>(std::max(0, o.torque_smoothing_half_width))),
+        torque_weights(savitzky_golay_weights(std::max(1, o.torque_smoothing_half_width))),
+        short_weights(savitzky_golay_weights(static_cast<int>(std::min<std::size_t>(
+            kShortTorqueHalfWidth, std::max<std::size_t>(1, torque_half_width))))) {
+    // (w_long − w_short) aligned on the centre.
+    const std::size_t kl = torque_weights.size() / 2, ks = short_weights.size() / 2;
+    double g = 0;
+    for (std::size_t j = 0; j < torque_weights.size(); ++j) {
+      double w = torque_weights[j];
+      if (j + ks >= kl && j <= kl + ks) w -= short_weights[j + ks - kl];
+      g += w * w;
+    }
+    disagreement_gain = std::sqrt(g);
+  }
 
   model::GearParams params_over(std::size_t first, std::size_t last) const {
     model::GearParams p = params;
@@ -256,8 +279,36 @@ struct MeasuredDriveTwin::Impl {
     double t = p.t_s - t_origin;
     if (!raw.empty() && !(t > raw.back().t)) t = raw.back().t + 1e-7;
     raw.push_back({t, s.theta_in_rad, s.theta_in_rad, last_load, points.size() - 1});
+    observe_torque_noise();
     while (next_emit + half_width < raw_front + raw.size()) emit(false);
     advance(false);
+  }
+
+  // The torque over the long window where it is a quadratic trend plus noise; where the long
+  // and the short window disagree beyond the noise (a holding brake turning over at a
+  // reversal), over the short one.
+  double smoothed_load(std::size_t c) const {
+    const std::size_t kt = torque_half_width;
+    if (kt == 0) return raw[c].load;
+    double longer = 0;
+    for (std::size_t j = 0; j <= 2 * kt; ++j) longer += torque_weights[j] * raw[c - kt + j].load;
+    const std::size_t ks = std::min<std::size_t>(kShortTorqueHalfWidth, kt);
+    double shorter = 0;
+    for (std::size_t j = 0; j <= 2 * ks; ++j) shorter += short_weights[j] * raw[c - ks + j].load;
+    if (torque_noise_count < 20) return shorter;
+    const double sigma = std::sqrt(torque_noise_squares / (20.0 * torque_noise_count));
+    return std::abs(longer - shorter) <= 4 * sigma * disagreement_gain ? longer : shorter;
+  }
+
+  // Running estimate of the torque noise from third differences, outliers (steps) left out.
+  void observe_torque_noise() {
+    const std::size_t n = raw.size();
+    if (n < 4) return;
+    const double d3 = raw[n - 1].load - 3 * raw[n - 2].load + 3 * raw[n - 3].load - raw[n - 4].load;
+    const double mean = torque_noise_count > 0 ? torque_noise_squares / torque_noise_count : 0;
+    if (torque_noise_count >= 20 && d3 * d3 > 25 * mean) return;
+    torque_noise_squares += d3 * d3;
+    ++torque_noise_count;
   }
 
   // Moves the next raw sample to the drive, smoothed when its window is complete and even.
@@ -272,15 +323,15 @@ struct MeasuredDriveTwin::Impl {
         even = even && std::abs(raw[j].t - raw[j - 1].t - h) <= 0.2 * h;
       }
       if (even) {
-        double theta = 0, load = 0;
-        for (std::size_t j = 0; j <= 2 * k; ++j) {
+        const std::size_t ka = angle_half_width;
+        double theta = 0;
+        for (std::size_t j = 0; ka > 0 && j <= 2 * ka; ++j) {
           // Relative to the centre: the weights sum to 1, and an angle of many turns keeps
           // its last digits.
-          theta += weights[j] * (raw[c - k + j].theta1 - out.theta1_raw);
-          load += weights[j] * raw[c - k + j].load;
+          theta += weights[j] * (raw[c - ka + j].theta1 - out.theta1_raw);
         }
         out.theta1 = out.theta1_raw + theta;
-        out.load = load;
+        out.load = smoothed_load(c);
       }
     }
     drive.push_back(out);

@@ -42,8 +42,14 @@ struct TwinSolverOptions {
   // 2·k + 1 samples; 0 = off) before it moves the model: the sensors' noise is not motion, and
   // a quantised input angle or a noisy torque rings the output mode. Quadratic trends (ramps)
   // pass unchanged; a window whose sample times are not evenly spaced (a late SYNC, a gap)
-  // passes raw. Costs k samples of lag. TE is still predicted against the measured θ_in.
+  // passes raw. Costs k samples of lag (the longer window's). TE is still predicted against
+  // the measured θ_in. A longer angle window blurs the servo's turn at a reversal.
   int smoothing_half_width = 3;
+  // The torque's window (the look-ahead is the longer of the two). Where it disagrees with a
+  // 5-sample window by more than 4 σ of the torque noise (estimated from the stream's third
+  // differences), the short window is used: a holding brake's torque turns over within a few
+  // samples at a reversal, where the input angle stays smooth.
+  int torque_smoothing_half_width = 6;
 };
 
 // The twin's parameters for a measured drive: kinematic input, no friction, no brake model,
