@@ -1,0 +1,94 @@
+// `wavebench run` as a user runs it on the in-process simulated bench: the summary table and
+// where results and report are; bad options and configs exit 2 naming them, writing nothing.
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int exit_code = -1;
+  std::string output;  // stdout and stderr
+};
+
+class RunCli : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("wavebench-run-cli-" + std::to_string(::getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+
+  CliRun run(const std::string& args) {
+    const fs::path log = dir_ / "cli.log";
+    const std::string cmd =
+        std::string("'") + WAVEBENCH_CLI + "' run " + args + " > '" + log.string() + "' 2>&1";
+    const int status = std::system(cmd.c_str());
+    CliRun r;
+    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+    std::ifstream in(log);
+    std::stringstream ss;
+    ss << in.rdbuf();
+    r.output = ss.str();
+    return r;
+  }
+  fs::path dir_;
+};
+
+TEST_F(RunCli, StaticOnTheSimulatedBenchPrintsTheSummaryAndWhereTheResultsAre) {
+  const fs::path out = dir_ / "runs";
+  const auto r = run("static --bench sim --out '" + out.string() +
+                     "' --positions 4 --loads 0,30 --window 0.1 --no-twin --no-report --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("forward"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("reverse"), std::string::npos) << r.output;
+  EXPECT_NE(r.output.find("p2p [arcmin]"), std::string::npos) << r.output;
+  const auto at = r.output.find("results: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const std::string path = r.output.substr(at + 9, r.output.find('\n', at) - at - 9);
+  std::ifstream in(path);
+  ASSERT_TRUE(in) << path;
+  const auto results = nlohmann::json::parse(in);
+  ASSERT_EQ(results["static"].size(), 4u);
+  EXPECT_EQ(results["static"][3]["load_nm"], 30.0);
+  EXPECT_EQ(results["status"], "complete");
+}
+
+TEST_F(RunCli, BadOptionsExitTwoNamingKeyValueAndExpectationAndWriteNothing) {
+  const fs::path out = dir_ / "runs";
+  const std::string o = " --out '" + out.string() + "' --quiet";
+  auto r = run("static --bench sim --positions 1" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("static.positions: got '1', expected an integer from 2"),
+            std::string::npos)
+      << r.output;
+  r = run("static --bench sim --rpm 100" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("--rpm"), std::string::npos) << r.output;
+  r = run("dynamic --bench sim --option input_rpm=-3" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("dynamic.input_rpm"), std::string::npos) << r.output;
+  r = run("static --bench sim --limit p2p=3" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("limits.p2p"), std::string::npos) << r.output;
+  r = run("wobble --bench sim" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  r = run("static --bench '" + (dir_ / "missing.yaml").string() + "'" + o);
+  EXPECT_EQ(r.exit_code, 2) << r.output;
+  EXPECT_NE(r.output.find("missing.yaml"), std::string::npos) << r.output;
+  EXPECT_FALSE(fs::exists(out));
+}
+
+}  // namespace
