@@ -115,6 +115,8 @@ json static_results() {
                       {"points", pts}});
   }
   return {{"procedure", "static"},
+          {"acquisition", {{"missed_syncs", 3}, {"log_first_error", ""}}},
+          {"settle_timeouts", 1},
           {"limit_checks",
            {{{"limit", "static_p2p_arcmin"},
              {"value", 6.0},
@@ -193,6 +195,9 @@ TEST_F(RunReportTest, StaticRunTablesPlotsAndTwin) {
   EXPECT_TRUE(is_png(run.dir / "twin.png"));
   EXPECT_EQ(rep.plots.size(), 2u);
   EXPECT_NE(html.find("<a href=\"samples.wbs\">samples.wbs</a>"), std::string::npos);
+  EXPECT_NE(html.find("<td>missed_syncs</td><td>3</td>"), std::string::npos);
+  EXPECT_NE(html.find("<td>settle_timeouts</td><td>1</td>"), std::string::npos);
+  EXPECT_EQ(html.find("log_first_error"), std::string::npos);
   EXPECT_NE(html.find("<a href=\"results.json\">results.json</a>"), std::string::npos);
   EXPECT_FALSE(fs::exists(run.dir / ".static_te.png.tmp"));
 }

@@ -169,6 +169,13 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     }
   }
 
+  HtmlTable acquisition = acquisition_table();
+  add_acquisition_rows(acquisition, run);
+  if (!acquisition.rows.empty()) {
+    page.heading("Acquisition");
+    page.table(acquisition);
+  }
+
   // The run's own files, linked so that the data behind every table is one click away.
   HtmlTable files;
   files.caption = "Files of the run";

@@ -242,6 +242,26 @@ void add_limit_rows(HtmlTable& table, const RunFolder& run) {
   }
 }
 
+HtmlTable acquisition_table() {
+  auto t = with_header(false, {"quantity", "value"});
+  t.caption = "Acquisition";
+  return t;
+}
+
+void add_acquisition_rows(HtmlTable& table, const RunFolder& run) {
+  std::vector<std::pair<std::string, std::string>> entries;
+  if (const auto it = run.results.find("acquisition"); it != run.results.end() && it->is_object()) {
+    flatten(*it, {}, 0, entries);
+  }
+  if (const auto t = number(run.results, "settle_timeouts")) {
+    entries.emplace_back("settle_timeouts", general(*t));
+  }
+  for (auto& [key, value] : entries) {
+    if (value.empty()) continue;  // e.g. no error text
+    push(table, std::nullopt, {key, value});
+  }
+}
+
 HtmlTable twin_table(bool with_run) {
   auto t = with_header(with_run, {"quantity", "value"});
   t.caption = "The twin beside the bench";

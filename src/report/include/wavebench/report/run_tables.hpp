@@ -42,6 +42,11 @@ void add_twin_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_ce
 HtmlTable limits_table();  // results.json "limit_checks": limit, value, measured, pass
 void add_limit_rows(HtmlTable& table, const RunFolder& run);
 
+// Every number of results.json "acquisition" (samples, gaps, bus load, ...), and
+// "settle_timeouts" of a static run.
+HtmlTable acquisition_table();
+void add_acquisition_rows(HtmlTable& table, const RunFolder& run);
+
 // The status as shown: "aborted: <reason>" etc.; alert when not complete.
 HtmlCell status_cell(const RunFolder& run);
 
