@@ -1,0 +1,196 @@
+// A static TE test with 4 positions, run by the bench code (CANopen master + Modbus brake
+// client) against `wavebench simbench` as its own process on vcan1 with its brake on Modbus TCP,
+// and the same test on the in-process simulated bench: both complete and agree. Runs in the
+// vcan VM (scripts/vcan-vm/); skips where vcan1 is absent. Nothing here asserts on time.
+#include <arpa/inet.h>
+#include <gtest/gtest.h>
+#include <net/if.h>
+#include <netinet/in.h>
+#include <signal.h>
+#include <spawn.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <array>
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <thread>
+
+#include "wavebench/bench/bench_config.hpp"
+#include "wavebench/bench/bench_factory.hpp"
+#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/storage/run_store.hpp"
+#include "wavebench/storage/sample_log.hpp"
+
+extern char** environ;
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace std::chrono_literals;
+constexpr const char* kInterface = "vcan1";
+
+int free_tcp_port() {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = 0;
+  socklen_t len = sizeof addr;
+  if (fd < 0 || ::bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) != 0 ||
+      ::getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) != 0) {
+    if (fd >= 0) ::close(fd);
+    return -1;
+  }
+  ::close(fd);
+  return ntohs(addr.sin_port);
+}
+
+bool tcp_port_accepts(int port) {
+  const int fd = ::socket(AF_INET, SOCK_STREAM, 0);
+  sockaddr_in addr{};
+  addr.sin_family = AF_INET;
+  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+  addr.sin_port = htons(static_cast<std::uint16_t>(port));
+  const bool ok = fd >= 0 && ::connect(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr) == 0;
+  if (fd >= 0) ::close(fd);
+  return ok;
+}
+
+wavebench::runs::RunRequest four_position_static(const std::string& config_text) {
+  wavebench::runs::RunRequest request;
+  request.procedure = "static";
+  // Faster moves and shorter windows than the defaults: under emulation each SYNC cycle
+  // crosses two processes, so bench time is what the test costs.
+  request.options = {{"positions", 4},        {"loads_nm", {0, 60}},
+                     {"window_s", 0.2},       {"move_speed_rad_s", 200.0},
+                     {"brake_settle_s", 0.2}, {"calibrate_twin", false}};
+  request.config_text = config_text;
+  request.twin = false;  // the comparison is of the measurement; the twin has its own tests
+  request.report = false;
+  return request;
+}
+
+const nlohmann::json* find_pass(const nlohmann::json& results, const std::string& direction,
+                                double load) {
+  for (const auto& pass : results.at("static"))
+    if (pass.at("direction") == direction &&
+        std::abs(pass.at("load_nm").get<double>() - load) < 1e-9)
+      return &pass;
+  return nullptr;
+}
+
+class StaticOverVcan : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    if (if_nametoindex(kInterface) == 0)
+      GTEST_SKIP() << kInterface << " is absent (runs in the vcan VM)";
+    root_ = fs::temp_directory_path() / ("wavebench-vcan-static-" + std::to_string(::getpid()));
+    fs::remove_all(root_);
+    port_ = free_tcp_port();
+    ASSERT_GT(port_, 0);
+    const std::string exe = std::string(WAVEBENCH_BINARY_DIR) + "/src/cli/wavebench";
+    const std::string config = std::string(WAVEBENCH_SOURCE_DIR) + "/configs/benches/sim.yaml";
+    std::vector<std::string> args{exe,
+                                  "simbench",
+                                  "--can",
+                                  kInterface,
+                                  "--clock",
+                                  "sync",
+                                  "--bench-config",
+                                  config,
+                                  "--modbus",
+                                  "tcp:127.0.0.1:" + std::to_string(port_),
+                                  "--duration",
+                                  "1800"};
+    std::vector<char*> argv;
+    for (auto& a : args) argv.push_back(a.data());
+    argv.push_back(nullptr);
+    ASSERT_EQ(posix_spawn(&pid_, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0) << exe;
+    // Emulated and loaded: wait for the brake port generously; the nodes boot with it.
+    const auto deadline = std::chrono::steady_clock::now() + 120s;
+    while (!tcp_port_accepts(port_) && std::chrono::steady_clock::now() < deadline)
+      std::this_thread::sleep_for(100ms);
+    ASSERT_TRUE(tcp_port_accepts(port_)) << "simbench's brake port " << port_ << " never opened";
+  }
+  void TearDown() override {
+    if (pid_ > 0) {
+      ::kill(pid_, SIGTERM);
+      int status = 0;
+      ::waitpid(pid_, &status, 0);
+    }
+    fs::remove_all(root_);
+  }
+
+  fs::path root_;
+  int port_ = -1;
+  pid_t pid_ = -1;
+};
+
+TEST_F(StaticOverVcan, FourPositionsCompleteAndAgreeWithTheInProcessBench) {
+  using namespace wavebench;
+  const fs::path config_path = fs::path(WAVEBENCH_SOURCE_DIR) / "configs/benches/sim.yaml";
+
+  // Across processes: the master on vcan1, the brake client on Modbus TCP.
+  auto over_vcan_config = bench::load_bench_config(config_path);
+  over_vcan_config.can.interface = kInterface;
+  over_vcan_config.can.sdo_timeout_s = 5;    // emulated: generous, never a timing assert
+  over_vcan_config.can.cycle_timeout_s = 1;  // a cycle's PDOs across processes under TCG
+  over_vcan_config.brake.link.endpoint.transport = modbus::Transport::tcp;
+  over_vcan_config.brake.link.endpoint.host = "127.0.0.1";
+  over_vcan_config.brake.link.endpoint.port = port_;
+  nlohmann::json over_vcan;
+  std::uint64_t vcan_samples = 0;
+  {
+    storage::RunStore store(root_ / "vcan", "test");
+    auto bench = bench::make_bench(over_vcan_config);
+    ASSERT_EQ(bench::simulated_access(*bench), nullptr) << "must not be the in-process bench";
+    bench->connect();
+    const auto out = runs::execute_run(*bench, store, four_position_static(over_vcan_config.text));
+    ASSERT_EQ(out.status, storage::RunStatus::kComplete) << out.reason;
+    over_vcan = out.results;
+    const auto log = storage::read_sample_log(store.paths(out.run_id).samples);
+    vcan_samples = log.samples.size();
+    EXPECT_FALSE(log.corrupt_record);
+    bench->disconnect();
+  }
+
+  // In-process: the same simulated unit and the same procedure.
+  nlohmann::json in_process;
+  {
+    storage::RunStore store(root_ / "inproc", "test");
+    auto config = bench::load_bench_config(config_path);
+    auto bench = bench::make_bench(config);
+    ASSERT_NE(bench::simulated_access(*bench), nullptr);
+    bench->connect();
+    const auto out = runs::execute_run(*bench, store, four_position_static(config.text));
+    ASSERT_EQ(out.status, storage::RunStatus::kComplete) << out.reason;
+    in_process = out.results;
+    bench->disconnect();
+  }
+
+  EXPECT_GT(vcan_samples, 1000U);
+  ASSERT_EQ(over_vcan.at("static").size(), 4U);  // 2 directions x 2 loads
+  for (const char* direction : {"forward", "reverse"}) {
+    for (double load : {0.0, 60.0}) {
+      SCOPED_TRACE(std::string(direction) + " at " + std::to_string(load) + " N*m");
+      const auto* a = find_pass(over_vcan, direction, load);
+      const auto* b = find_pass(in_process, direction, load);
+      ASSERT_NE(a, nullptr);
+      ASSERT_NE(b, nullptr);
+      EXPECT_EQ(a->at("points").size(), 4U);
+      // The two benches are the same unit, sampled by different schedules of SYNC across
+      // processes: agreement to the acceptance tolerance of the static test (0.1 arcmin).
+      for (const char* key : {"mean_arcmin", "p2p_arcmin", "std_arcmin"}) {
+        EXPECT_NEAR(a->at(key).get<double>(), b->at(key).get<double>(), 0.1) << key;
+        std::printf("%s %4.0f N*m %-12s vcan %+8.4f  in-process %+8.4f arcmin\n", direction, load,
+                    key, a->at(key).get<double>(), b->at(key).get<double>());
+      }
+    }
+  }
+}
+
+}  // namespace
