@@ -1,16 +1,22 @@
 // The acquisition benchmark (issue #5): the in-process simulated bench on the real clock at
 // the configured SYNC rate (1 kHz by default) for a given time, the input turning at 100 rpm
-// under a brake load. Prints samples lost, incomplete samples, SYNC lateness p50/p99/max and
-// the process's CPU use. Usage: bench_acquisition_benchmark [SECONDS=600] [CONFIG=sim]
+// under a brake load, every sample going to a sample log on disk and to the twin beside the
+// bench, as in a run. Prints samples lost (SYNCs sent − records on disk), incomplete samples,
+// SYNC lateness p50/p99/max, the twin's lag and drops, and CPU use.
+// Usage: acquisition_benchmark [SECONDS=600] [CONFIG=sim]
 #include <sys/resource.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <string>
 
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
+#include "wavebench/storage/sample_log.hpp"
+#include "wavebench/twin/twin_beside_bench.hpp"
 
 namespace {
 
@@ -49,19 +55,44 @@ int main(int argc, char** argv) {
   auto bench = make_bench(config);
   GapObserver gaps;
   bench->add_observer(gaps);
+  const auto log_path = std::filesystem::temp_directory_path() /
+                        ("wavebench-acquisition-" + std::to_string(::getpid()) + ".wbs");
+  class LogObserver : public SampleObserver {
+   public:
+    explicit LogObserver(const std::filesystem::path& p) : writer(p) {}
+    void on_sample(const wavebench::storage::SyncSample& s) noexcept override {
+      try {
+        writer.append(s);
+        writer.flush_if_due();
+      } catch (...) {
+        ++failures;
+      }
+    }
+    wavebench::storage::SampleLogWriter writer;
+    std::uint64_t failures = 0;
+  } log(log_path);
+  wavebench::twin::TwinBesideBench twin(bench->description().twin_gear, bench->description().sense);
   bench->connect();
   bench->set_brake_torque(10.0);
   bench->run_input_velocity(100 * 2 * M_PI / 60);
   const double cpu0 = cpu_seconds();
   const auto real0 = std::chrono::steady_clock::now();
   const auto s0 = bench->acquisition_stats();
+  bench->add_observer(log);
+  bench->add_observer(twin);
   bench->wait_for(seconds);
+  bench->remove_observer(twin);
+  bench->remove_observer(log);
   const auto s = bench->acquisition_stats();
   const double real =
       std::chrono::duration<double>(std::chrono::steady_clock::now() - real0).count();
   const double cpu = cpu_seconds() - cpu0;
   bench->stop_motion();
   bench->disconnect();
+  log.writer.close();
+  const auto on_disk = wavebench::storage::read_sample_log(log_path);
+  std::filesystem::remove(log_path);
+  const auto& tw = twin.finish();
   const auto expected = static_cast<std::uint64_t>(real / config.description.sync_period_s);
   std::printf("acquisition benchmark: %.1f s at %.0f Hz (real clock, in-process simulated bench)\n",
               real, 1 / config.description.sync_period_s);
@@ -84,7 +115,20 @@ int main(int argc, char** argv) {
       static_cast<unsigned long long>(gaps.missing[3]),
       static_cast<unsigned long long>(gaps.missing[4]),
       static_cast<unsigned long long>(gaps.missing[5]));
-  std::printf("  CPU %.1f %% of one core (%.2f s), bus load %.0f %%\n", 100 * cpu / real, cpu,
-              s.bus_load * 100);
+  std::printf("  samples on disk %llu of %llu handed over (lost %lld, write failures %llu)\n",
+              static_cast<unsigned long long>(on_disk.samples.size()),
+              static_cast<unsigned long long>(log.writer.records_appended()),
+              static_cast<long long>(log.writer.records_appended()) -
+                  static_cast<long long>(on_disk.samples.size()),
+              static_cast<unsigned long long>(log.failures));
+  std::printf(
+      "  twin: %llu received, %llu dropped, %llu predicted; lag p50 %.1f ms, p99 %.1f ms, "
+      "max %.1f ms; twin thread CPU %.2f s%s%s\n",
+      static_cast<unsigned long long>(tw.samples_received),
+      static_cast<unsigned long long>(tw.samples_dropped),
+      static_cast<unsigned long long>(tw.samples_predicted), tw.lag.p50_s * 1e3, tw.lag.p99_s * 1e3,
+      tw.lag.max_s * 1e3, tw.thread_cpu_s, tw.error.empty() ? "" : "; error: ", tw.error.c_str());
+  std::printf("  CPU %.1f %% of one core (%.2f s, twin thread included), bus load %.0f %%\n",
+              100 * cpu / real, cpu, s.bus_load * 100);
   return 0;
 }
