@@ -138,7 +138,9 @@ StiffnessBacklashEstimate estimate_stiffness_backlash(const StaticTeResult& run)
   int count = 0;
   for (const auto& s : run.load_shifts) {
     if (s.load_nm != top) continue;
-    shift += s.shift_arcmin / kArcminPerRad;
+    // The directions shift opposite ways (the twist follows the torque, which follows the
+    // direction of travel): their magnitudes are the twist.
+    shift += std::abs(s.shift_arcmin) / kArcminPerRad;
     e.load_nm = s.load_nm - s.reference_load_nm;
     ++count;
   }

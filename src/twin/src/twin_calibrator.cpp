@@ -198,18 +198,25 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   if (static_run != nullptr) {
     try {
       const auto e = procedures::estimate_stiffness_backlash(*static_run);
-      params.backlash.total_rad = std::abs(e.backlash_rad);
       const double x = nominal_twist(params.stiffness, std::abs(e.load_nm));
-      if (x > 0 && std::abs(e.shift_rad) > 0)
-        scale_stiffness(params.stiffness, x / std::abs(e.shift_rad));
-      cal.fitted.push_back("static_estimate");
-      replayed = false;
+      const double factor = x > 0 && std::abs(e.shift_rad) > 0 ? x / std::abs(e.shift_rad) : 0;
+      // Only a plausible estimate seeds the fit (a factor of five either way at most).
+      if (factor >= 0.2 && factor <= 5 && std::isfinite(e.backlash_rad)) {
+        params.backlash.total_rad = std::abs(e.backlash_rad);
+        scale_stiffness(params.stiffness, factor);
+        cal.fitted.push_back("static_estimate");
+        replayed = false;
+      }
     } catch (const std::invalid_argument&) {
       // A static run without two loads or both directions: the sample fit alone decides.
     }
   }
   Replay current = replayed ? best : replay(params, sense, samples, analyser, options.solver);
-  if (!replayed) best = current;  // the estimate is the starting point, fit or not
+  // With passes = 0 the estimate alone is the calibration; otherwise the best replay wins.
+  if (!replayed &&
+      (options.passes == 0 || current.residual.rms_arcsec < best.residual.rms_arcsec)) {
+    best = current;
+  }
 
   const auto candidates = candidate_orders(nominal, options.extra_orders);
   for (int pass = 0; pass < options.passes; ++pass) {
@@ -285,9 +292,12 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
     cal.orders = orders;
     cal.passes = pass + 1;
     current = replay(params, sense, samples, analyser, options.solver);
-    if (current.residual.rms_arcsec < best.residual.rms_arcsec || pass == 0) best = current;
+    if (current.residual.rms_arcsec < best.residual.rms_arcsec) best = current;
   }
 
+  if (best.residual.rms_arcsec >= cal.before.rms_arcsec && options.passes > 0) {
+    cal.fitted.push_back("no_improvement");  // the nominal twin stays the best there is
+  }
   cal.calibrated = best.params;
   cal.calibrated.name = nominal.name + " (calibrated)";
   cal.after = best.residual;

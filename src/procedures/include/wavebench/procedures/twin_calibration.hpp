@@ -66,8 +66,8 @@ HarmonicRegression fit_te_harmonics(std::span<const double> theta1_rad,
                                     std::span<const std::vector<double>> regressors);
 
 // Backlash and secant stiffness from a static TE run at two loads (the lowest and the highest):
-// backlash = mean lost motion at the lowest load; shift = loaded − unloaded mean TE, averaged
-// over the directions; K = ΔT / shift.
+// backlash = mean lost motion at the lowest load; shift = |loaded − unloaded mean TE|,
+// averaged over the directions (they shift opposite ways); K = ΔT / shift.
 struct StiffnessBacklashEstimate {
   double backlash_rad = 0;
   double shift_rad = 0;

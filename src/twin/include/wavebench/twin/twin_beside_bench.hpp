@@ -11,12 +11,15 @@
 //   bench.remove_observer(twin);
 //   const twin::TwinRunReport& live = twin.finish();          // drains the queue, joins
 //   twin::write_twin_csv(run_dir / "twin.csv", live.points);  // twin_overlay.hpp
-//   results["twin"] = twin::to_json(live);                    // lag, drops, residual
+//   results["twin"] = twin::to_json(live);                    // lag, drops, solver figures
+//   results["twin"]["residual"] = procedures::to_json(
+//       twin::twin_overlay_residual(twin::twin_overlay(live.points), analyser));
 //   // At the end, with every sample of the run (e.g. read back from samples.wbs):
 //   auto cal = twin::calibrate_twin(description.twin_gear, description.sense, samples,
 //                                   analyser, static_result_or_null);   // twin_calibrator.hpp
 //   twin::write_calibrated_twin_config(run_dir / "twin-calibrated.yaml", cal);
-//   results["twin"]["calibration"] = twin::to_json(cal);  // residual before/after, parameters
+//   results["twin"]["calibration"] = twin::to_json(cal);  // residual before/after, floor, ...
+//   results["twin"]["calibration"]["config"] = "twin-calibrated.yaml";
 //
 // on_sample() copies six numbers into a bounded lock-free queue and returns; a full queue
 // counts the sample as dropped, it never waits. The constructor throws std::invalid_argument

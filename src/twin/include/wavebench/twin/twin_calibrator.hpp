@@ -12,7 +12,8 @@
 // TE = −e − Δ with Δ = x + flank·b/2 makes the residual linear in all of them. A static run's
 // estimate_stiffness_backlash() (when given) sets the starting backlash and stiffness. The fit
 // and replay repeat `passes` times (the contact and twist move with the parameters); the
-// calibrated parameters are those of the replay with the lowest residual RMS.
+// calibrated parameters are those of the replay with the lowest residual RMS, the nominal
+// ones included ("no_improvement" in `fitted` then).
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
