@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "plant_bench.hpp"
+#include "wavebench/runs/run_limits.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -193,6 +194,24 @@ TEST_F(RunExecutorTest, TheTwinRunsBesideAndTheReportIsWritten) {
   EXPECT_TRUE(out.results["twin"].contains("residual"));
   ASSERT_TRUE(out.results.contains("report")) << out.results.value("report_error", "");
   EXPECT_TRUE(fs::exists(out.dir / "report.html"));
+}
+
+}  // namespace
+}  // namespace wavebench::runs
+
+namespace wavebench::runs {
+namespace {
+
+TEST(RunLimits, StaticLostMotionIsLimitedBySizeWhateverItsSign) {
+  const nlohmann::json results = {
+      {"lost_motion", {{{"load_nm", 60}, {"lost_motion_arcmin", {-10.4, -10.2}}}}}};
+  auto v = check_limits({{"static_lost_motion_arcmin", 5.0}}, results);
+  ASSERT_TRUE(v.pass);
+  EXPECT_FALSE(*v.pass);
+  EXPECT_DOUBLE_EQ(v.checks[0]["measured"].get<double>(), 10.4);
+  v = check_limits({{"static_lost_motion_arcmin", 11.0}}, results);
+  EXPECT_TRUE(v.pass && *v.pass);
+  EXPECT_FALSE(check_limits({{"dynamic_rms_arcsec", 1.0}}, results).pass.has_value());
 }
 
 }  // namespace

@@ -1,5 +1,6 @@
 #include "wavebench/runs/run_limits.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <stdexcept>
@@ -77,7 +78,17 @@ LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& re
   }
   if (const auto it = results.find("lost_motion"); it != results.end() && it->is_array()) {
     for (const auto& lm : *it) {
-      c.check("static_lost_motion_arcmin", num(lm, "max_arcmin"),
+      // forward − reverse is negative under a brake (TE falls in forward travel): the limit
+      // is on its size.
+      double largest = std::numeric_limits<double>::quiet_NaN();
+      if (const auto per = lm.find("lost_motion_arcmin"); per != lm.end() && per->is_array()) {
+        for (const auto& x : *per) {
+          if (x.is_number())
+            largest = std::isnan(largest) ? std::abs(x.get<double>())
+                                          : std::max(largest, std::abs(x.get<double>()));
+        }
+      }
+      c.check("static_lost_motion_arcmin", largest,
               "static " + std::to_string(lm.value("load_nm", 0.0)) + " N·m");
     }
   }
