@@ -17,6 +17,8 @@ model::GearParams quiet_gear() {
   p.viscous_input = 0;
   p.viscous_output = 0;
   p.load.output_drag_coulomb = 0;
+  // model.md §4's size-32 catalogue example, whatever the default unit's own stiffness.
+  p.stiffness.law = model::ThreeSegmentStiffness{6.7e4, 29, 1.1e5, 108, 1.2e5};
   return p;
 }
 
@@ -35,9 +37,7 @@ TEST(BenchPlant, TeExcitationIsTheSumOfTheTermsOverBothAngles) {
 }
 
 TEST(BenchPlant, CatalogueTwistAtSixtyNewtonMetres) {
-  model::GearParams p = quiet_gear();
-  p.stiffness.law = model::ThreeSegmentStiffness{6.7e4, 29, 1.1e5, 108, 1.2e5};
-  SimulatedBenchPlant plant(p);
+  SimulatedBenchPlant plant(quiet_gear());
   const auto& law = std::get<model::ThreeSegmentStiffness>(plant.params().stiffness.law);
   // model.md §4: 60 N*m on the size-32 example twists 7.15e-4 rad.
   const double x = law.t1 / law.k1 + (60 - law.t1) / law.k2;
