@@ -167,7 +167,9 @@ struct MeasuredDriveTwin::Impl {
     const model::GearOutputs o = model.outputs(drive[i].t, y, d);
     TwinPoint& p = points[drive[i].point];
     // The model's TE is against the θ1 that drove it; the measurement's against θ_in.
-    p.predicted_te_rad = o.te + (drive[i].theta1 - drive[i].theta1_raw) / model.ratio();
+    p.predicted_te_rad = o.te + (drive[i].theta1 - drive[i].theta1_raw) / model.ratio() +
+                         options.input_latch_delay_s * o.omega1 / model.ratio();
+    p.omega1_rad_s = o.omega1;
     p.excitation_rad = o.te_excitation;
     p.spring_twist_rad = o.spring_twist;
     p.twist_rad = o.twist;
@@ -270,7 +272,7 @@ struct MeasuredDriveTwin::Impl {
     p.measured_te_rad =
         in_ok && out_ok ? sense.transmission_error(s.theta_in_rad, s.theta_out_rad) : kNaN;
     p.predicted_te_rad = p.excitation_rad = p.spring_twist_rad = p.twist_rad = kNaN;
-    p.omega2_rad_s = p.gear_torque_nm = kNaN;
+    p.omega1_rad_s = p.omega2_rad_s = p.gear_torque_nm = kNaN;
     points.push_back(p);
     if (!in_ok) return;  // the twin is driven by θ_in: a sample without it is skipped
     // A missing torque holds the last one; the sensor's sign maps onto the model's direction.

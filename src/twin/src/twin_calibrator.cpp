@@ -149,7 +149,24 @@ double percentile_span(std::vector<double> v, double q) {
   return at(1 - q) - lo;
 }
 
+double correlation(const std::vector<double>& a, const std::vector<double>& b) {
+  const auto n = static_cast<double>(a.size());
+  double ma = 0, mb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    ma += a[i] / n;
+    mb += b[i] / n;
+  }
+  double sab = 0, saa = 0, sbb = 0;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    sab += (a[i] - ma) * (b[i] - mb);
+    saa += (a[i] - ma) * (a[i] - ma);
+    sbb += (b[i] - mb) * (b[i] - mb);
+  }
+  return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
+}
+
 struct Replay {
+  TwinSolverOptions solver;
   model::GearParams params;
   std::vector<TwinPoint> points;
   procedures::TwinResidual residual;
@@ -158,7 +175,7 @@ struct Replay {
 Replay replay(const model::GearParams& params, const procedures::GearSense& sense,
               std::span<const storage::SyncSample> samples, analysis::SpectrumAnalyser& analyser,
               const TwinSolverOptions& solver) {
-  Replay r{params, replay_twin(params, sense, samples, solver), {}};
+  Replay r{solver, params, replay_twin(params, sense, samples, solver), {}};
   r.residual = twin_overlay_residual(twin_overlay(r.points), analyser);
   return r;
 }
@@ -194,6 +211,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   cal.before = best.residual;
 
   model::GearParams params = nominal;
+  TwinSolverOptions solver = options.solver;
   bool replayed = true;  // `best` holds the replay of `params`
   if (static_run != nullptr) {
     try {
@@ -211,7 +229,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       // A static run without two loads or both directions: the sample fit alone decides.
     }
   }
-  Replay current = replayed ? best : replay(params, sense, samples, analyser, options.solver);
+  Replay current = replayed ? best : replay(params, sense, samples, analyser, solver);
   // With passes = 0 the estimate alone is the calibration; otherwise the best replay wins.
   if (!replayed &&
       (options.passes == 0 || current.residual.rms_arcsec < best.residual.rms_arcsec)) {
@@ -221,7 +239,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   const auto candidates = candidate_orders(nominal, options.extra_orders);
   for (int pass = 0; pass < options.passes; ++pass) {
     // Rows with everything the fit needs.
-    std::vector<double> th1, th2, target, flank, twist, torque;
+    std::vector<double> th1, th2, target, flank, twist, torque, speed;
     const double half = 0.5 * params.backlash.total_rad;
     for (const auto& p : current.points) {
       if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
@@ -234,6 +252,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
       twist.push_back(p.spring_twist_rad);
       torque.push_back(p.gear_torque_nm);
+      speed.push_back(p.omega1_rad_s / sense.ratio);
     }
     const std::size_t n = target.size();
     if (n == 0) break;
@@ -266,6 +285,18 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       regressors.push_back(twist);
       names.push_back("stiffness");
     }
+    double speed_scale = 0;
+    // With the speed's sign always the flank's (runs that only move), the delay and the
+    // backlash cannot be told apart: the backlash is the gear's, so it wins.
+    const bool apart_from_flank = std::abs(correlation(speed, flank)) < 0.9;
+    if (percentile_span(speed, 0.02) >= options.min_speed_span_rad_s && apart_from_flank) {
+      double squares = 0;
+      for (double v : speed) squares += v * v;
+      speed_scale = std::sqrt(squares / static_cast<double>(n));
+      for (double& v : speed) v /= speed_scale;
+      regressors.push_back(speed);
+      names.push_back("input_latch_delay");
+    }
     const auto fit = procedures::fit_te_harmonics(th1, th2, target, orders, regressors);
     for (const auto& h : fit.fit.harmonics) merge_harmonic(params.te_terms, h);
     merge_offset(params.te_terms, fit.fit.offset_rad);
@@ -273,6 +304,9 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       const double c = fit.coefficients[r];
       if (names[r] == "backlash") {
         params.backlash.total_rad = std::max(0.0, params.backlash.total_rad + c);
+      } else if (names[r] == "input_latch_delay") {
+        // pred − meas = −δ·ω1/N: the delay grows by −c (per unit of the scaled column).
+        solver.input_latch_delay_s -= c / speed_scale;
       } else {
         // x → (1 + ε)·x under the same torque: k → k/(1 + ε); kept within a factor of 5.
         const double eps = std::clamp(c / twist_scale, -0.8, 4.0);
@@ -291,7 +325,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
     }
     cal.orders = orders;
     cal.passes = pass + 1;
-    current = replay(params, sense, samples, analyser, options.solver);
+    current = replay(params, sense, samples, analyser, solver);
     if (current.residual.rms_arcsec < best.residual.rms_arcsec) best = current;
   }
 
@@ -299,6 +333,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
     cal.fitted.push_back("no_improvement");  // the nominal twin stays the best there is
   }
   cal.calibrated = best.params;
+  cal.solver = best.solver;
   cal.calibrated.name = nominal.name + " (calibrated)";
   cal.after = best.residual;
   cal.replay_after = std::move(best.points);
@@ -350,6 +385,7 @@ nlohmann::json to_json(const TwinCalibration& c) {
           {"backlash_nominal_arcmin", c.nominal.backlash.total_rad * kArcminPerRad},
           {"backlash_calibrated_arcmin", c.calibrated.backlash.total_rad * kArcminPerRad},
           {"stiffness_factor", c.stiffness_factor},
+          {"input_latch_delay_s", c.solver.input_latch_delay_s},
           {"fitted", c.fitted},
           {"passes", c.passes},
           {"te_terms", terms}};

@@ -50,6 +50,11 @@ struct TwinSolverOptions {
   // differences), the short window is used: a holding brake's torque turns over within a few
   // samples at a reversal, where the input angle stays smooth.
   int torque_smoothing_half_width = 6;
+  // How much older the input angle is than the output angle in a sample [s] (a drive that
+  // reports the position of its last control cycle rather than at SYNC): the predicted TE
+  // carries it as ω1·delay/N, so that it compares with the measured one. The calibration fits
+  // it when the run's speed varies.
+  double input_latch_delay_s = 0;
 };
 
 // The twin's parameters for a measured drive: kinematic input, no friction, no brake model,

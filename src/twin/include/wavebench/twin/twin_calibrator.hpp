@@ -9,6 +9,8 @@
 //     samples),
 //   - the stiffness (regressor: the twin's spring twist x; k → k/(1 + ε)), fitted only when
 //     the gear torque varies over the run (several loads).
+//   - the input latch delay (regressor: ω1/N, TwinSolverOptions), fitted only when the
+//     speed varies.
 // TE = −e − Δ with Δ = x + flank·b/2 makes the residual linear in all of them. A static run's
 // estimate_stiffness_backlash() (when given) sets the starting backlash and stiffness. The fit
 // and replay repeat `passes` times (the contact and twist move with the parameters); the
@@ -39,6 +41,9 @@ struct TwinCalibrationOptions {
   double min_phase_span_rad = 6.283185307179586;
   // Backlash is fitted only when each flank holds this fraction of the samples.
   double min_flank_fraction = 0.05;
+  // The input latch delay (TwinSolverOptions) is fitted only when the output speed (2nd to
+  // 98th percentile) spans this much [rad/s]: at one speed it is a TE offset.
+  double min_speed_span_rad_s = 0.05;
   // Stiffness is fitted only when the gear torque (2nd to 98th percentile) spans this much:
   // at one load the twist is confounded with the TE offset.
   double min_torque_span_nm = 5;
@@ -50,7 +55,10 @@ struct TwinCalibration {
   procedures::TwinResidual before;  // nominal twin replayed over the run
   procedures::TwinResidual after;   // calibrated twin replayed over the same samples
   std::vector<TwinPoint> replay_after;
-  double stiffness_factor = 1;      // calibrated / nominal stiffness
+  double stiffness_factor = 1;  // calibrated / nominal stiffness
+  // The solver options of the calibrated replay, with the fitted input latch delay (a property
+  // of the bench's sampling, not of the gear: it is not in the config file).
+  TwinSolverOptions solver;
   std::vector<std::string> fitted;  // what the fit changed: te_harmonics, offset, backlash, ...
   std::vector<procedures::HarmonicOrder> orders;  // the harmonic basis used
   int passes = 0;

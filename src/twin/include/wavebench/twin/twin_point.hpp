@@ -30,6 +30,7 @@ struct TwinPoint {
   double excitation_rad = 0;
   double spring_twist_rad = 0;
   double twist_rad = 0;
+  double omega1_rad_s = 0;  // input speed the twin was driven with
   double omega2_rad_s = 0;
   double gear_torque_nm = 0;
 };
