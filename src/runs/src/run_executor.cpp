@@ -249,6 +249,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
               procedure_result.static_result ? &*procedure_result.static_result : nullptr);
           twin::write_calibrated_twin_config(paths.dir / "twin-calibrated.yaml", cal);
           twin_json["calibration"] = twin::to_json(cal);
+          twin_json["calibration"]["config"] = "twin-calibrated.yaml";
         }
       } catch (const std::exception& e) {
         twin_json["error"] = e.what();

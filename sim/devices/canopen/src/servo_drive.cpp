@@ -415,6 +415,15 @@ void Cia402ServoDrive::update_target_reached(double position, double velocity, d
   }
 }
 
+void Cia402ServoDrive::observe(const PlantState& plant) {
+  const double cpr = counts_per_radian();
+  actual_position_ = plant.theta_in * cpr;
+  actual_velocity_ = plant.omega_in * cpr;
+  auto& d = od();
+  d.set<std::int32_t>(0x6064, 0, wrap_to_int32(actual_position_));
+  d.set<std::int32_t>(0x606C, 0, wrap_to_int32(actual_velocity_));
+}
+
 void Cia402ServoDrive::update_outputs(const PlantState& /*plant*/) {
   auto& d = od();
   d.set<std::int32_t>(0x6064, 0, wrap_to_int32(actual_position_));

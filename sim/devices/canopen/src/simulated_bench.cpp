@@ -130,6 +130,7 @@ void SimulatedBench::advance_chunk(double dt) {
 
 void SimulatedBench::observe_sensors() {
   const PlantState& s = plant_.state();
+  drive_.observe(s);
   encoder_.observe(direction_sign_ * s.theta_out);
   torque_sensor_.observe(direction_sign_ * s.shaft_torque);
 }

@@ -60,6 +60,10 @@ class Cia402ServoDrive final : public CanopenNode {
 
   // One servo period: reads the motor shaft from the plant, returns the motor torque [N*m].
   double control(const PlantState& plant, double dt);
+  // Latches the position and speed feedback (0x6064, 0x606C) at the plant's present state, so
+  // that a TPDO sent on SYNC carries the input angle of the same instant as the output encoder's
+  // (devices latch on SYNC), not the one of the last control period's start.
+  void observe(const PlantState& plant);
   // A fault with the given CiA 402 error code (0x603F): fault reaction, EMCY.
   void inject_fault(std::uint16_t error_code);
 
