@@ -16,7 +16,8 @@ struct SourceKind {
 
 // Which family (and so which orders) a named source belongs to; the table of model.md §3.
 SourceKind classify(const std::string& name) {
-  if (name == "dF_i1") return {TeFamily::kTangentialOutput, "Flexspline tangential composite error"};
+  if (name == "dF_i1")
+    return {TeFamily::kTangentialOutput, "Flexspline tangential composite error"};
   if (name == "dF_i3") {
     return {TeFamily::kTangentialOutput, "output circular spline tangential composite error"};
   }

@@ -34,7 +34,7 @@ enum class TeFamily {
 };
 
 struct TeTerm {
-  std::string source;        // e.g. "dF_i1 (Flexspline tangential composite error)"
+  std::string source;  // e.g. "dF_i1 (Flexspline tangential composite error)"
   TeFamily family = TeFamily::kCustom;
   double amplitude_rad = 0;  // at the output
   double order_input = 0;    // a: cycles per wave-generator revolution
@@ -50,8 +50,8 @@ struct ErrorSource {
 };
 struct ErrorSourceSet {
   std::vector<ErrorSource> sources;
-  double pitch_diameter_m = 0;   // d_w
-  double pressure_angle_rad = 0; // alpha_n
+  double pitch_diameter_m = 0;        // d_w
+  double pressure_angle_rad = 0;      // alpha_n
   double tooth_pairs_in_contact = 1;  // N_c (mean)
 };
 
@@ -78,7 +78,7 @@ struct TableStiffness {  // 4: monotone (PCHIP) interpolation of a measured curv
   std::vector<double> torque_nm;
 };
 struct HystereticBranchStiffness {  // 5: seed 001, x in arcsec; K(x) = A x^2 + B x + C [N*m/arcsec]
-  double a_load = 0, b_load = 0, c_load = 0;      // K2 while |torque| rises
+  double a_load = 0, b_load = 0, c_load = 0;        // K2 while |torque| rises
   double a_unload = 0, b_unload = 0, c_unload = 0;  // K1 while |torque| falls
 };
 struct FadingMemoryStiffness {  // 6: T = a x^3 + b x^2 + c x + z, z' = A x' - B z
@@ -89,9 +89,9 @@ struct FadingMemoryStiffness {  // 6: T = a x^3 + b x^2 + c x + z, z' = A x' - B
 struct BoucWenStiffness {  // 7: T = alpha k x + (1 - alpha) k w
   double k = 0, alpha = 0.5, beta = 0, gamma = 0, n = 1;
 };
-using StiffnessLaw = std::variant<LinearPeriodicStiffness, CubicStiffness, ThreeSegmentStiffness,
-                                  TableStiffness, HystereticBranchStiffness,
-                                  FadingMemoryStiffness, BoucWenStiffness>;
+using StiffnessLaw =
+    std::variant<LinearPeriodicStiffness, CubicStiffness, ThreeSegmentStiffness, TableStiffness,
+                 HystereticBranchStiffness, FadingMemoryStiffness, BoucWenStiffness>;
 
 struct StiffnessParams {
   StiffnessLaw law;
@@ -101,8 +101,8 @@ struct StiffnessParams {
 
 // --- Backlash (model.md §5) ---------------------------------------------------------------
 struct BacklashParams {
-  double total_rad = 0;         // b: dead zone is |Delta| <= b/2
-  double smoothing_rad = 0;     // epsilon: 0 = sharp dead zone with event location
+  double total_rad = 0;      // b: dead zone is |Delta| <= b/2
+  double smoothing_rad = 0;  // epsilon: 0 = sharp dead zone with event location
 };
 
 // --- Damping ----------------------------------------------------------------------------
@@ -135,19 +135,19 @@ struct DcMotorInput {  // T_m = K_m i - T_0; u = R i + L i' + K_e omega1 (L = 0:
   double no_load_torque = 0;
   Sinusoid voltage;
 };
-struct ServoDriveInput {  // cascaded position -> velocity (PI) -> torque, with limits
-  double position_gain = 0;        // [1/s]
-  double velocity_gain = 0;        // [N*m*s/rad]
+struct ServoDriveInput {              // cascaded position -> velocity (PI) -> torque, with limits
+  double position_gain = 0;           // [1/s]
+  double velocity_gain = 0;           // [N*m*s/rad]
   double velocity_integral_time = 0;  // [s], 0 = no integral action
-  double torque_limit = 0;         // [N*m], 0 = none
-  double speed_limit = 0;          // [rad/s], 0 = none
-  double speed_setpoint = 0;       // [rad/s] at the input; used when position control is off
+  double torque_limit = 0;            // [N*m], 0 = none
+  double speed_limit = 0;             // [rad/s], 0 = none
+  double speed_setpoint = 0;          // [rad/s] at the input; used when position control is off
   bool position_control = false;
-  double position_setpoint = 0;    // [rad] at the input
+  double position_setpoint = 0;  // [rad] at the input
 };
-struct KinematicInput {  // prescribed theta1(t): constant speed, ramp, or a measured trace
-  double speed = 0;            // [rad/s] at the input, after the ramp
-  double ramp_time = 0;        // [s] from standstill to speed, 0 = at speed from t = 0
+struct KinematicInput {         // prescribed theta1(t): constant speed, ramp, or a measured trace
+  double speed = 0;             // [rad/s] at the input, after the ramp
+  double ramp_time = 0;         // [s] from standstill to speed, 0 = at speed from t = 0
   std::vector<double> trace_t;  // optional trace (overrides speed): times [s]
   std::vector<double> trace_theta;  // input angles [rad]
 };
@@ -155,22 +155,22 @@ using InputDrive = std::variant<TorqueInput, DcMotorInput, ServoDriveInput, Kine
 
 // --- Load (model.md §7) -------------------------------------------------------------------
 struct PowderBrakeParams {
-  double torque_per_amp = 0;       // [N*m/A] within the rated range
-  double threshold_current = 0;    // [A] below it no torque
-  double rated_current = 0;        // [A] above it the torque saturates
-  double time_constant = 0.05;     // [s] current -> torque lag
-  double falling_ratio = 1.0;      // torque on the falling curve / rising curve (hysteresis)
-  double current_setpoint = 0;     // [A] constant coil current
-  double holding_speed = 1e-3;     // [rad/s] regularisation width of the holding torque
-  double thermal_capacity = 0;     // [J/K], 0 = no thermal model
-  double thermal_resistance = 0;   // [K/W] to ambient
-  double ambient_temperature = 25; // [degC]
+  double torque_per_amp = 0;        // [N*m/A] within the rated range
+  double threshold_current = 0;     // [A] below it no torque
+  double rated_current = 0;         // [A] above it the torque saturates
+  double time_constant = 0.05;      // [s] current -> torque lag
+  double falling_ratio = 1.0;       // torque on the falling curve / rising curve (hysteresis)
+  double current_setpoint = 0;      // [A] constant coil current
+  double holding_speed = 1e-3;      // [rad/s] regularisation width of the holding torque
+  double thermal_capacity = 0;      // [J/K], 0 = no thermal model
+  double thermal_resistance = 0;    // [K/W] to ambient
+  double ambient_temperature = 25;  // [degC]
 };
 struct LoadParams {
-  Sinusoid output_torque;                 // T_L + T_iL sin(w_L t), opposes nothing: signed
-  Sinusoid drive_ripple;                  // T_d + T_id sin(w_d t) on the input side
-  double output_drag_coulomb = 0;         // bearing/seal drag opposing omega2 [N*m]
-  double drag_smoothing_speed = 1e-3;     // [rad/s]
+  Sinusoid output_torque;              // T_L + T_iL sin(w_L t), opposes nothing: signed
+  Sinusoid drive_ripple;               // T_d + T_id sin(w_d t) on the input side
+  double output_drag_coulomb = 0;      // bearing/seal drag opposing omega2 [N*m]
+  double drag_smoothing_speed = 1e-3;  // [rad/s]
   std::optional<PowderBrakeParams> brake;
 };
 
@@ -178,10 +178,10 @@ struct LoadParams {
 struct GearParams {
   std::string name;
   GearGeometry geometry;
-  double inertia_input = 0;   // J1: motor rotor + wave generator [kg*m^2]
-  double inertia_output = 0;  // J2: Flexspline + flange + load [kg*m^2]
-  double viscous_input = 0;   // C_j [N*m*s/rad]
-  double viscous_output = 0;  // C_z [N*m*s/rad]
+  double inertia_input = 0;      // J1: motor rotor + wave generator [kg*m^2]
+  double inertia_output = 0;     // J2: Flexspline + flange + load [kg*m^2]
+  double viscous_input = 0;      // C_j [N*m*s/rad]
+  double viscous_output = 0;     // C_z [N*m*s/rad]
   std::vector<TeTerm> te_terms;  // Fourier form plus converted error sources
   StiffnessParams stiffness;
   BacklashParams backlash;

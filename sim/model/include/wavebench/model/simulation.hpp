@@ -18,15 +18,15 @@ enum class SolverMethod {
 };
 
 struct SimulationOptions {
-  double t_end = 1.0;           // [s]
-  double transient = 0.0;       // [s] samples before this are not returned
-  double sample_rate = 10000;   // [Hz] output from dense output at a fixed rate
+  double t_end = 1.0;          // [s]
+  double transient = 0.0;      // [s] samples before this are not returned
+  double sample_rate = 10000;  // [Hz] output from dense output at a fixed rate
   SolverMethod method = SolverMethod::kDormandPrince45;
   double rtol = 1e-6;
-  double atol = 1e-9;           // scaled per state by the model's characteristic sizes
-  double fixed_step = 1e-5;     // [s] RK4 step
-  double max_step = 0;          // [s] 0 = no limit
-  bool locate_events = true;    // backlash contact events, hysteresis reversals
+  double atol = 1e-9;         // scaled per state by the model's characteristic sizes
+  double fixed_step = 1e-5;   // [s] RK4 step
+  double max_step = 0;        // [s] 0 = no limit
+  bool locate_events = true;  // backlash contact events, hysteresis reversals
   // Called now and then with the fraction done; long runs show progress through it.
   std::function<void(double fraction)> progress;
 };
@@ -35,17 +35,17 @@ struct SimulationOptions {
 // where named so; TE = theta2 - theta1/N at the output (model.md §1), in rad.
 struct SampledResponse {
   std::vector<double> t;
-  std::vector<double> theta1;       // input angle [rad] (absolute)
-  std::vector<double> omega1;       // input speed [rad/s]
-  std::vector<double> theta2_dev;   // theta2 - theta1_nominal(t)/N [rad]
-  std::vector<double> omega2;       // output speed [rad/s]
-  std::vector<double> alpha2;       // output angular acceleration [rad/s^2]
-  std::vector<double> twist;        // Delta = theta1/N - theta2 - e [rad]
-  std::vector<double> twist_rate;   // Delta' [rad/s]
-  std::vector<double> te;           // theta2 - theta1/N [rad]
-  std::vector<double> gear_torque;  // T_g at the output [N*m]
-  std::vector<double> load_torque;  // T_L (brake or prescribed) [N*m]
-  std::vector<double> motor_torque; // T_m [N*m]
+  std::vector<double> theta1;        // input angle [rad] (absolute)
+  std::vector<double> omega1;        // input speed [rad/s]
+  std::vector<double> theta2_dev;    // theta2 - theta1_nominal(t)/N [rad]
+  std::vector<double> omega2;        // output speed [rad/s]
+  std::vector<double> alpha2;        // output angular acceleration [rad/s^2]
+  std::vector<double> twist;         // Delta = theta1/N - theta2 - e [rad]
+  std::vector<double> twist_rate;    // Delta' [rad/s]
+  std::vector<double> te;            // theta2 - theta1/N [rad]
+  std::vector<double> gear_torque;   // T_g at the output [N*m]
+  std::vector<double> load_torque;   // T_L (brake or prescribed) [N*m]
+  std::vector<double> motor_torque;  // T_m [N*m]
 };
 
 struct SolverStats {
@@ -53,7 +53,7 @@ struct SolverStats {
   std::int64_t rejected_steps = 0;
   std::int64_t rhs_evaluations = 0;
   std::int64_t jacobian_evaluations = 0;
-  std::int64_t events = 0;            // located contact / reversal events
+  std::int64_t events = 0;  // located contact / reversal events
   double wall_s = 0;
 };
 

@@ -15,14 +15,14 @@ struct SafetyLimits {  // bench.md §7; a value <= 0 switches that limit off
   double max_measured_torque_nm = 0;
   double max_following_error_rad = 0;  // input side
   double max_coil_temperature_c = 0;
-  double max_te_excursion_rad = 0;     // |TE| at the output
-  double heartbeat_timeout_s = 0;      // consumer time per node
+  double max_te_excursion_rad = 0;  // |TE| at the output
+  double heartbeat_timeout_s = 0;   // consumer time per node
   double modbus_link_timeout_s = 0;
 };
 
 struct BenchDescription {
-  std::string name;         // "sim" for the in-process simulated bench, or the config's name
-  std::string unit_serial;  // the gear under test
+  std::string name;             // "sim" for the in-process simulated bench, or the config's name
+  std::string unit_serial;      // the gear under test
   procedures::GearSense sense;  // ratio N and the output direction sign
   double sync_period_s = 1e-3;
   bool simulated_clock = false;

@@ -29,15 +29,15 @@ class OdeSystem {
   // Event location: witness functions g_k(t, y; d); a sign change inside a step is located
   // on the dense output to the integrator's tolerance, then on_event() may update d (and y).
   virtual std::size_t witness_count() const { return 0; }
-  virtual void witnesses(double /*t*/, std::span<const double> /*y*/,
-                         std::span<const double> /*d*/, std::span<double> /*g*/) const {}
+  virtual void witnesses(double /*t*/, std::span<const double> /*y*/, std::span<const double> /*d*/,
+                         std::span<double> /*g*/) const {}
   virtual void on_event(std::size_t /*witness*/, double /*t*/, std::span<double> /*y*/,
                         std::span<double> /*d*/) const {}
 
   // Optional analytic Jacobian df/dy (row-major n x n) for implicit methods; false = the
   // integrator uses finite differences.
-  virtual bool jacobian(double /*t*/, std::span<const double> /*y*/,
-                        std::span<const double> /*d*/, std::span<double> /*dfdy*/) const {
+  virtual bool jacobian(double /*t*/, std::span<const double> /*y*/, std::span<const double> /*d*/,
+                        std::span<double> /*dfdy*/) const {
     return false;
   }
 };
