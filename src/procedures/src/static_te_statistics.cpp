@@ -27,7 +27,10 @@ StaticTeSummary summarise_static_pass(const StaticTePass& pass, const GearSense&
   for (const auto& p : pass.points) {
     StaticTePointResult r;
     r.position = p.position;
-    r.output_angle_deg = sense.model_output_angle(p.theta_out_rad) * 180.0 / std::numbers::pi;
+    // Within one output revolution: the output encoder's multi-turn zero is arbitrary (the
+    // simulated one sits at 2048 turns), so whole turns carry no information here.
+    const double deg = sense.model_output_angle(p.theta_out_rad) * 180.0 / std::numbers::pi;
+    r.output_angle_deg = deg - 360.0 * std::floor(deg / 360.0);
     r.te_arcmin = sense.transmission_error(p.theta_in_rad, p.theta_out_rad) * kArcminPerRad;
     r.torque_nm = p.torque_nm;
     sum += r.te_arcmin;

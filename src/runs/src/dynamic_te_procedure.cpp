@@ -81,7 +81,8 @@ nlohmann::json DynamicTeOutcome::to_json() const {
                  te = nlohmann::json::array();
   for (std::size_t i = 0; i < n; i += stride) {
     t.push_back(result.time_s[i]);
-    a.push_back(result.output_angle_rad[i] * 180 / std::numbers::pi);
+    // From the start of the record: the encoder's multi-turn zero is arbitrary.
+    a.push_back((result.output_angle_rad[i] - result.output_angle_rad[0]) * 180 / std::numbers::pi);
     te.push_back(result.te_arcsec[i]);
   }
   j["trace"] = {{"time_s", t}, {"output_angle_deg", a}, {"te_arcsec", te}};

@@ -35,7 +35,7 @@ struct StaticTePass {
 
 struct StaticTePointResult {
   int position = 0;
-  double output_angle_deg = 0;  // θ2 in degrees
+  double output_angle_deg = 0;  // θ2 in degrees, in [0, 360)
   double te_arcmin = 0;
   double torque_nm = 0;
 };
