@@ -6,6 +6,8 @@
 #include <future>
 #include <stdexcept>
 
+#include "wavebench/daemon/realtime_scheduling.hpp"
+
 namespace wavebench::daemon {
 
 // Keeps the acquisition statistics fresh: they may only be read on the bench thread, which is
@@ -73,6 +75,16 @@ void BenchThread::start() {
       std::lock_guard lock(mutex_);
       bench_ = bench.get();
       description_ = bench->description();
+    }
+    if (!description_->simulated_clock) {
+      // SYNC from user space wakes late on an ordinary kernel (bench.md §1): ask for real-time
+      // scheduling where permitted; its absence is logged, not fatal.
+      const auto rt = request_realtime_scheduling();
+      if (rt.fifo && rt.memory_locked) {
+        spdlog::info("bench thread: {}", rt.message);
+      } else {
+        spdlog::warn("bench thread: {}; acquisition runs on ordinary scheduling", rt.message);
+      }
     }
     connect_bench();
     built.set_value();
