@@ -1,5 +1,5 @@
 #pragma once
-// Parameters of the strain-wave gear model (../shared/spec/model.md). SI units throughout:
+// Parameters of the strain-wave gear model (model.md, the gear specification). SI units throughout:
 // rad, s, N*m, kg*m^2, N*m/rad, A, V, Ohm. Parameters hold no changing data; the model reads
 // them, the integrators never touch them.
 
