@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 
+#include "../support/cli_run.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace {
@@ -20,23 +21,8 @@ namespace fs = std::filesystem;
 namespace storage = wavebench::storage;
 using nlohmann::json;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun run_cli(const std::string& args, const fs::path& log) {
-  const std::string cmd =
-      std::string("'") + WAVEBENCH_CLI + "' " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
-  return r;
-}
+using wavebench::testing::CliRun;
+using wavebench::testing::run_cli;
 
 std::string q(const fs::path& p) {
   return "'" + p.string() + "'";

@@ -13,28 +13,15 @@
 #include <sstream>
 #include <string>
 
+#include "../support/cli_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 const fs::path kConfigs = fs::path(WAVEBENCH_SOURCE_DIR) / "configs" / "twin";
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
-
-CliRun run_cli(const std::string& args, const fs::path& log) {
-  const std::string cmd =
-      std::string("'") + WAVEBENCH_CLI + "' " + args + " > '" + log.string() + "' 2>&1";
-  const int status = std::system(cmd.c_str());
-  CliRun r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(log);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.output = ss.str();
-  return r;
-}
+using wavebench::testing::CliRun;
+using wavebench::testing::run_cli;
 
 class SimCli : public ::testing::Test {
  protected:

@@ -11,14 +11,14 @@
 #include <sstream>
 #include <string>
 
+#include "../support/cli_run.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int exit_code = -1;
-  std::string output;  // stdout and stderr
-};
+using wavebench::testing::CliRun;
+using wavebench::testing::run_cli;
 
 class RunCli : public ::testing::Test {
  protected:
@@ -31,19 +31,7 @@ class RunCli : public ::testing::Test {
   }
   void TearDown() override { fs::remove_all(dir_); }
 
-  CliRun run(const std::string& args) {
-    const fs::path log = dir_ / "cli.log";
-    const std::string cmd =
-        std::string("'") + WAVEBENCH_CLI + "' run " + args + " > '" + log.string() + "' 2>&1";
-    const int status = std::system(cmd.c_str());
-    CliRun r;
-    r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(log);
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.output = ss.str();
-    return r;
-  }
+  CliRun run(const std::string& args) { return run_cli("run " + args, dir_ / "cli.log"); }
   fs::path dir_;
 };
 
