@@ -3,9 +3,11 @@
 // procedures: TE excitation at the settled angles, elastic twist under the held torque through
 // the three-segment law, and the backlash flank the approach leaves the mesh on.
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <variant>
+#include <vector>
 
 #include "wavebench/model/gear_params.hpp"
 
@@ -42,6 +44,23 @@ inline double true_static_te(const model::GearParams& g, double theta1, double t
                              double torque, int travel) {
   const double twist = travel * g.backlash.total_rad / 2 + true_twist(g, torque);
   return -twist - true_excitation(g, theta1, theta2);
+}
+
+// Mean, peak-to-peak and population standard deviation of the truth at the positions,
+// computed here independently of the procedure's statistics.
+struct Stats {
+  double mean = 0, p2p = 0, std = 0;
+};
+
+inline Stats stats(const std::vector<double>& v) {
+  Stats s;
+  for (double x : v) s.mean += x;
+  s.mean /= static_cast<double>(v.size());
+  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
+  s.std = std::sqrt(s.std / static_cast<double>(v.size()));
+  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
+  s.p2p = *hi - *lo;
+  return s;
 }
 
 }  // namespace wavebench::runs::testing

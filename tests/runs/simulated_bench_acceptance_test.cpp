@@ -35,20 +35,8 @@ struct Sim {
   bench::SimulatedBenchAccess* access = nullptr;
 };
 
-struct Stats {
-  double mean = 0, p2p = 0, std = 0;
-};
-
-Stats stats(const std::vector<double>& v) {
-  Stats s;
-  for (double x : v) s.mean += x;
-  s.mean /= static_cast<double>(v.size());
-  for (double x : v) s.std += (x - s.mean) * (x - s.mean);
-  s.std = std::sqrt(s.std / static_cast<double>(v.size()));
-  const auto [lo, hi] = std::minmax_element(v.begin(), v.end());
-  s.p2p = *hi - *lo;
-  return s;
-}
+using testing::Stats;
+using testing::stats;
 
 TEST(SimulatedBenchAcceptance, StaticTeEveryDirectionAndLoadWithinATenthOfAnArcminOfTheTruth) {
   Sim sim;
