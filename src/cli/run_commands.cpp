@@ -1,8 +1,8 @@
 // `wavebench run static|dynamic|lost-motion --bench sim|CONFIG [--out DIR] ...`: one procedure
 // without a daemon. Builds the bench (the in-process simulated bench for "sim"), records the
 // run in the store under --out, prints the summary table and where results and report are.
-// A bad option or config: a message naming the key, the value and what was expected, exit 2,
-// nothing written.
+// A bad option or config, or a request the bench or the disk cannot take: a message naming
+// the key, the value and what was expected, exit 2, nothing written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -137,8 +137,10 @@ int run_procedure(const RunArgs& a) {
   bench::BenchConfig config;
   try {
     request = build_request(a);
-    runs::check_run_request(request);
     config = bench::bench_config_from_argument(a.bench);
+    // The whole request against this bench and the runs folder, before anything is created
+    // or moves: ranges, the bench's safety limits, duration and disk (issue #8).
+    runs::check_run_request(request, config.description, a.out);
   } catch (const config::ConfigError& e) {
     std::cerr << "wavebench run: " << e.what() << "\n";
     return 2;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <sstream>
 
 #include "wavebench/procedures/gear_sense.hpp"
 #include "wavebench/runs/option_reader.hpp"
@@ -99,6 +100,25 @@ nlohmann::json DynamicTeOutcome::to_json() const {
 }
 
 DynamicTeProcedure::DynamicTeProcedure(DynamicTeOptions options) : options_(std::move(options)) {}
+
+RunPlan DynamicTeProcedure::plan(const bench::BenchDescription& bench) const {
+  const auto& o = options_;
+  bench.sense.validate();
+  RunPlan plan;
+  if (o.load_nm > 0) plan.brake_torques_nm.push_back({"dynamic.load_nm", o.load_nm, "N*m"});
+  plan.input_speeds_rad_s.push_back({"dynamic.input_rpm", o.input_rpm, "rpm", kTwoPi / 60});
+  // As run(): speed up, run in, record the revolutions (and the margin that closes them),
+  // stop.
+  const double omega_in = o.input_rpm * kTwoPi / 60;
+  const double record_s = o.output_revolutions * 1.005 * kTwoPi * bench.sense.ratio / omega_in;
+  plan.bench_time_s = planned_ramp_s(omega_in) + o.run_in_s + record_s + planned_ramp_s(omega_in);
+  std::ostringstream terms;
+  terms << "dynamic.run_in_s " << o.run_in_s << " s + dynamic.output_revolutions "
+        << o.output_revolutions << " at dynamic.input_rpm " << o.input_rpm << " (" << record_s
+        << " s at ratio " << bench.sense.ratio << ")";
+  plan.duration_terms = terms.str();
+  return plan;
+}
 
 DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
                                          const ProcedureProgress& progress) const {

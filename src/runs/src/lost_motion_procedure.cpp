@@ -16,6 +16,16 @@ namespace wavebench::runs {
 
 namespace {
 
+// Stay below the brake's own limit and the safety limit, with a margin for the brake's
+// torque ripple.
+double ladder_cap_nm(const bench::BenchDescription& d) {
+  double cap = std::numeric_limits<double>::infinity();
+  for (double limit : {d.max_brake_torque_nm, d.limits.max_brake_torque_nm}) {
+    if (limit > 0) cap = std::min(cap, 0.95 * limit);
+  }
+  return cap;
+}
+
 // Twist and torque averaged over the samples whose output angle lies in [lo, hi].
 procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSample>& samples,
                                             const procedures::GearSense& sense, double lo,
@@ -42,6 +52,31 @@ procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSampl
     throw std::runtime_error(m.str());
   }
   return {torque / torques, twist / angles, travel};
+}
+
+// The brake torques of the ladder, ascending: the explicit list or the fractions of rated,
+// without those above the brake's own limit and the safety limit (crossing one trips the
+// bench). Throws std::invalid_argument when rated is unknown for fractions.
+std::vector<double> torque_ladder(const LostMotionOptions& o, const bench::BenchDescription& d) {
+  std::vector<double> ladder;
+  if (o.torques_nm.empty()) {
+    if (!(d.rated_torque_nm > 0)) {
+      throw std::invalid_argument(
+          "lost-motion: the bench's rated_torque is " + std::to_string(d.rated_torque_nm) +
+          "; expected > 0 for a ladder in fractions of it (or give torques_nm)");
+    }
+    for (double f : o.torque_fractions) ladder.push_back(f * d.rated_torque_nm);
+  } else {
+    ladder = o.torques_nm;
+  }
+  std::erase_if(ladder, [cap = ladder_cap_nm(d)](double t) { return t > cap; });
+  std::sort(ladder.begin(), ladder.end());
+  return ladder;
+}
+
+std::string short_ladder_message(std::size_t rungs, const bench::BenchDescription& d) {
+  return "lost-motion: " + std::to_string(rungs) + " ladder torques below the brake limit " +
+         std::to_string(ladder_cap_nm(d)) + " N·m; expected at least 4";
 }
 
 }  // namespace
@@ -102,6 +137,44 @@ nlohmann::json LostMotionOutcome::to_json() const {
 LostMotionProcedure::LostMotionProcedure(LostMotionOptions options)
     : options_(std::move(options)) {}
 
+RunPlan LostMotionProcedure::plan(const bench::BenchDescription& bench) const {
+  const auto& o = options_;
+  bench.sense.validate();
+  RunPlan plan;
+  const auto ladder = torque_ladder(o, bench);
+  if (ladder.size() < 4) plan.refusal = short_ladder_message(ladder.size(), bench);
+  // Explicit torques are what the request asked for, all of them; fractions above the cap
+  // are left out of the ladder by design and so never commanded.
+  if (!o.torques_nm.empty()) {
+    for (std::size_t i = 0; i < o.torques_nm.size(); ++i) {
+      plan.brake_torques_nm.push_back(
+          {"lost-motion.torques_nm[" + std::to_string(i) + "]", o.torques_nm[i], "N*m"});
+    }
+  } else {
+    const double cap = ladder_cap_nm(bench);
+    for (std::size_t i = 0; i < o.torque_fractions.size(); ++i) {
+      if (o.torque_fractions[i] * bench.rated_torque_nm > cap) continue;
+      plan.brake_torques_nm.push_back({"lost-motion.torque_fractions[" + std::to_string(i) + "]",
+                                       o.torque_fractions[i], "x rated", bench.rated_torque_nm});
+    }
+  }
+  plan.input_speeds_rad_s.push_back(
+      {"lost-motion.input_speed_rad_s", o.input_speed_rad_s, "rad/s"});
+  // As run(): at each rung the brake settles, then the input moves forward over the run-in
+  // and the window and back.
+  const auto teeth = gear_teeth(bench.twin_gear, bench.sense.ratio);
+  const double window = o.window_periods * 2 * std::numbers::pi / teeth.z_flex;
+  const double span_in = bench.sense.ratio * (2 * o.run_in_output_rad + window);
+  const double rung_s = o.brake_settle_s + 2 * planned_move_s(span_in, o.input_speed_rad_s);
+  plan.bench_time_s = static_cast<double>(ladder.size()) * rung_s;
+  std::ostringstream terms;
+  terms << ladder.size() << " ladder torques x " << rung_s
+        << " s (lost-motion.brake_settle_s, two moves of " << span_in
+        << " rad at lost-motion.input_speed_rad_s)";
+  plan.duration_terms = terms.str();
+  return plan;
+}
+
 LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
                                            const ProcedureProgress& progress) const {
   const auto& o = options_;
@@ -110,27 +183,9 @@ LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
   sense.validate();
   LostMotionOutcome out;
   out.rated_torque_nm = d.rated_torque_nm;
-  if (o.torques_nm.empty()) {
-    if (!(d.rated_torque_nm > 0)) {
-      throw std::invalid_argument(
-          "lost-motion: the bench's rated_torque is " + std::to_string(d.rated_torque_nm) +
-          "; expected > 0 for a ladder in fractions of it (or give torques_nm)");
-    }
-    for (double f : o.torque_fractions) out.ladder_nm.push_back(f * d.rated_torque_nm);
-  } else {
-    out.ladder_nm = o.torques_nm;
-  }
-  // Stay below the brake's own limit and the safety limit: crossing one trips the bench.
-  double cap = std::numeric_limits<double>::infinity();
-  for (double limit : {d.max_brake_torque_nm, d.limits.max_brake_torque_nm}) {
-    if (limit > 0) cap = std::min(cap, 0.95 * limit);
-  }
-  std::erase_if(out.ladder_nm, [cap](double t) { return t > cap; });
-  std::sort(out.ladder_nm.begin(), out.ladder_nm.end());
+  out.ladder_nm = torque_ladder(o, d);
   if (out.ladder_nm.size() < 4) {
-    throw std::invalid_argument("lost-motion: " + std::to_string(out.ladder_nm.size()) +
-                                " ladder torques below the brake limit " + std::to_string(cap) +
-                                " N·m; expected at least 4");
+    throw std::invalid_argument(short_ladder_message(out.ladder_nm.size(), d));
   }
   procedures::LostMotionOptions fit;
   fit.rated_torque_nm = d.rated_torque_nm > 0 ? d.rated_torque_nm : out.ladder_nm.back();

@@ -4,6 +4,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "quoted_value.hpp"
+
 namespace wavebench::runs {
 
 namespace {
@@ -20,7 +22,7 @@ OptionReader::OptionReader(const nlohmann::json& options, std::string scope,
                            std::initializer_list<const char*> known_keys)
     : options_(options), scope_(std::move(scope)) {
   if (!options_.is_object()) {
-    throw std::invalid_argument(scope_ + " options: got '" + options_.dump() +
+    throw std::invalid_argument(scope_ + " options: got '" + quoted_value(options_) +
                                 "', expected an object of option keys");
   }
   for (const auto& [key, value] : options_.items()) {
@@ -31,16 +33,15 @@ OptionReader::OptionReader(const nlohmann::json& options, std::string scope,
       list += list.empty() ? k : std::string(", ") + k;
     }
     if (!known) {
-      throw std::invalid_argument(scope_ + ": unknown option '" + key + "' (value '" +
-                                  value.dump() + "'), expected one of: " + list);
+      throw std::invalid_argument(scope_ + ": unknown option '" + quoted_value(key) + "' (value '" +
+                                  quoted_value(value) + "'), expected one of: " + list);
     }
   }
 }
 
-void OptionReader::fail(const char* key, const nlohmann::json& value,
+void OptionReader::fail(const std::string& key, const nlohmann::json& value,
                         const std::string& expected) const {
-  throw std::invalid_argument(scope_ + "." + key + ": got '" +
-                              (value.is_string() ? value.get<std::string>() : value.dump()) +
+  throw std::invalid_argument(scope_ + "." + key + ": got '" + quoted_value(value) +
                               "', expected " + expected);
 }
 
@@ -74,17 +75,23 @@ void OptionReader::boolean(const char* key, bool& value) {
 }
 
 void OptionReader::numbers(const char* key, std::vector<double>& values, double min, double max,
-                           std::size_t min_count) {
+                           std::size_t min_count, std::size_t max_count) {
   if (!options_.contains(key)) return;
   const auto& v = options_.at(key);
-  const std::string what = "a list of at least " + std::to_string(min_count) +
-                           " numbers, each >= " + format(min) + " and <= " + format(max);
-  if (!v.is_array() || v.size() < min_count) fail(key, v, what);
+  const std::string count =
+      "a list of " + std::to_string(min_count) + " to " + std::to_string(max_count) + " numbers";
+  if (!v.is_array()) fail(key, v, count);
+  if (v.size() < min_count || v.size() > max_count) {
+    fail(key, "a list of " + std::to_string(v.size()) + " entries", count);
+  }
+  const std::string range = "a number >= " + format(min) + " and <= " + format(max);
   std::vector<double> out;
-  for (const auto& item : v) {
-    if (!item.is_number()) fail(key, v, what);
+  for (std::size_t i = 0; i < v.size(); ++i) {
+    const auto& item = v[i];
+    const std::string item_key = std::string(key) + "[" + std::to_string(i) + "]";
+    if (!item.is_number()) fail(item_key, item, range);
     const double x = item.get<double>();
-    if (!std::isfinite(x) || x < min || x > max) fail(key, v, what);
+    if (!std::isfinite(x) || x < min || x > max) fail(item_key, item, range);
     out.push_back(x);
   }
   values = std::move(out);

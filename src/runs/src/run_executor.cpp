@@ -5,14 +5,13 @@
 #include <stdexcept>
 #include <variant>
 
+#include "parsed_request.hpp"
+#include "run_request_check_detail.hpp"
+#include "sample_log_observer.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
-#include "wavebench/runs/dynamic_te_procedure.hpp"
-#include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/run_limits.hpp"
-#include "wavebench/runs/run_request_check.hpp"
 #include "wavebench/runs/sample_recorder.hpp"
 #include "wavebench/runs/software_version.hpp"
-#include "wavebench/runs/static_te_procedure.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 #if defined(WAVEBENCH_TWIN_AVAILABLE) && __has_include("wavebench/twin/twin_overlay.hpp")
@@ -34,78 +33,6 @@
 namespace wavebench::runs {
 
 namespace {
-
-// Keys of a request's options that belong to the run, not to the procedure.
-constexpr const char* kLimitsKey = "limits";
-constexpr const char* kCalibrateKey = "calibrate_twin";
-
-using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure>;
-
-struct ParsedRequest {
-  AnyProcedure procedure;
-  nlohmann::json procedure_options;
-  nlohmann::json limits = nlohmann::json::object();
-  bool calibrate_twin = true;
-};
-
-ParsedRequest parse_request(const RunRequest& request) {
-  if (!request.options.is_object()) {
-    throw std::invalid_argument("options: got '" + request.options.dump() +
-                                "', expected an object of option keys");
-  }
-  nlohmann::json options = request.options;
-  nlohmann::json limits = nlohmann::json::object();
-  if (options.contains(kLimitsKey)) {
-    limits = options[kLimitsKey];
-    validate_limits(limits);
-    options.erase(kLimitsKey);
-  }
-  bool calibrate = true;
-  if (options.contains(kCalibrateKey)) {
-    if (!options[kCalibrateKey].is_boolean()) {
-      throw std::invalid_argument(std::string(kCalibrateKey) + ": got '" +
-                                  options[kCalibrateKey].dump() + "', expected true or false");
-    }
-    calibrate = options[kCalibrateKey].get<bool>();
-    options.erase(kCalibrateKey);
-  }
-  if (request.procedure == "static") {
-    const auto o = StaticTeOptions::from_json(options);
-    return {StaticTeProcedure(o), o.to_json(), limits, calibrate};
-  }
-  if (request.procedure == "dynamic") {
-    const auto o = DynamicTeOptions::from_json(options);
-    return {DynamicTeProcedure(o), o.to_json(), limits, calibrate};
-  }
-  if (request.procedure == "lost-motion") {
-    const auto o = LostMotionOptions::from_json(options);
-    return {LostMotionProcedure(o), o.to_json(), limits, calibrate};
-  }
-  throw std::invalid_argument("procedure: got '" + request.procedure +
-                              "', expected static, dynamic or lost-motion");
-}
-
-// Every sample to samples.wbs as it is acquired. A write failure must not take acquisition
-// down: it is counted and reported with the run.
-class SampleLogObserver final : public bench::SampleObserver {
- public:
-  explicit SampleLogObserver(storage::SampleLogWriter& writer) : writer_(writer) {}
-  void on_sample(const storage::SyncSample& sample) noexcept override {
-    try {
-      writer_.append(sample);
-      writer_.flush_if_due();
-    } catch (const std::exception& e) {
-      if (errors_++ == 0) first_error_ = e.what();
-    }
-  }
-  std::uint64_t errors() const { return errors_; }
-  const std::string& first_error() const { return first_error_; }
-
- private:
-  storage::SampleLogWriter& writer_;
-  std::uint64_t errors_ = 0;
-  std::string first_error_;
-};
 
 struct ProcedureResult {
   nlohmann::json json = nlohmann::json::object();
@@ -144,9 +71,9 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
                                 const storage::SampleLogWriter& writer,
                                 const SampleLogObserver& log) {
   const auto& g = writer.gap_totals();
-  return {{"samples_logged", writer.records_appended()},
-          {"log_write_errors", log.errors()},
-          {"log_first_error", log.first_error()},
+  return {{"samples_logged", writer.records_flushed()},
+          {"log_write_errors", log.samples_not_logged()},
+          {"log_first_error", log.failure()},
           {"missed_syncs", g.missed_cycles},
           {"incomplete_samples", g.incomplete_samples},
           {"gaps", g.gaps},
@@ -159,16 +86,24 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
           {"bench_bus_load", a.bus_load}};
 }
 
-}  // namespace
-
-void check_run_request(const RunRequest& request) {
-  parse_request(request);
+// results.json where it can still be written: a full disk must not turn an aborted run into
+// an exception (the index row and the outcome carry the status and reason either way).
+void write_results_if_possible(storage::RunStore& store, const std::string& id,
+                               nlohmann::json& results) {
+  try {
+    store.write_results(id, results);
+  } catch (const std::exception& e) {
+    results["results_error"] = std::string("results.json not written: ") + e.what();
+  }
 }
+
+}  // namespace
 
 RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunRequest& request,
                        const ProgressSink& progress) {
-  ParsedRequest parsed = parse_request(request);  // nothing on disk before this passes
   const auto& description = bench.description();
+  // Nothing on disk and nothing moved before the whole request passes.
+  ParsedRequest parsed = check_and_parse(request, description, run_budget(store.root()));
 
   RunOutcome outcome;
   outcome.run_id = store.create_run(request.procedure, description.unit_serial, request.config_text,
@@ -177,6 +112,11 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
   outcome.dir = paths.dir;
   const auto report_progress = [&](const std::string& phase, double fraction) {
     if (progress) progress({outcome.run_id, phase, fraction});
+  };
+  const auto abort_with = [&](const std::string& reason) {
+    if (outcome.status == storage::RunStatus::kAborted) return;  // the first reason stands
+    outcome.status = storage::RunStatus::kAborted;
+    outcome.reason = reason;
   };
 
   nlohmann::json results = {
@@ -193,9 +133,14 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"limits", parsed.limits}};
   ProcedureResult procedure_result;
   nlohmann::json twin_json;
-  {
-    storage::SampleLogWriter writer(paths.samples);
-    SampleLogObserver log(writer);
+  std::optional<storage::SampleLogWriter> writer;
+  try {
+    writer.emplace(paths.samples);
+  } catch (const std::exception& e) {
+    abort_with(std::string("sample log not created, nothing moved: ") + e.what());
+  }
+  if (writer) {
+    SampleLogObserver log(*writer, bench);
 #if WAVEBENCH_RUN_TWIN
     std::unique_ptr<twin::TwinBesideBench> twin_beside;
     if (request.twin) {
@@ -219,16 +164,22 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
             parsed.procedure, bench,
             [&](const std::string& phase, double f) { report_progress(phase, 0.9 * f); });
       } catch (const bench::BenchAborted& e) {
-        outcome.status = storage::RunStatus::kAborted;
-        outcome.reason = e.what();
+        // A trip the log asked for is reported as the log's failure, not as an operator stop.
+        abort_with(log.failed() ? log.failure() : std::string(e.what()));
       } catch (const std::exception& e) {
         make_safe(bench);
-        outcome.status = storage::RunStatus::kAborted;
-        outcome.reason = std::string("procedure failed: ") + e.what();
+        abort_with(log.failed() ? log.failure() : std::string("procedure failed: ") + e.what());
       }
+      // The log may fail after the procedure's last blocking call: the run is still missing
+      // samples.
+      if (log.failed()) abort_with(log.failure());
     }
-    writer.close();
-    results["acquisition"] = acquisition_json(bench.acquisition_stats(), writer, log);
+    try {
+      writer->close();
+    } catch (const std::exception& e) {
+      abort_with(std::string("sample log: not closed cleanly: ") + e.what());
+    }
+    results["acquisition"] = acquisition_json(bench.acquisition_stats(), *writer, log);
 #if WAVEBENCH_RUN_TWIN
     if (twin_beside) {
       report_progress("twin", 0.92);
@@ -269,11 +220,17 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
     results["limit_checks"] = verdict.checks;
     results["pass"] = pass ? nlohmann::json(*pass) : nlohmann::json();
   }
-  store.write_results(outcome.run_id, results);
-  store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);
+  write_results_if_possible(store, outcome.run_id, results);
+  try {
+    store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);
+  } catch (const std::exception& e) {
+    // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
+    // next start of a store marks it incomplete; the caller still learns the status here.
+    results["index_error"] = std::string("run index not updated: ") + e.what();
+  }
 
 #if WAVEBENCH_RUN_REPORT
-  if (request.report) {
+  if (request.report && !results.contains("results_error")) {
     report_progress("report", 0.97);
     try {
       const auto report = report::write_run_report(paths.dir);
@@ -281,7 +238,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
     } catch (const std::exception& e) {
       results["report_error"] = e.what();
     }
-    store.write_results(outcome.run_id, results);
+    write_results_if_possible(store, outcome.run_id, results);
   }
 #endif
   outcome.results = std::move(results);

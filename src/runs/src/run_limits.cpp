@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include "quoted_value.hpp"
+
 namespace wavebench::runs {
 
 namespace {
@@ -43,7 +45,7 @@ double num(const nlohmann::json& j, const char* key) {
 
 void validate_limits(const nlohmann::json& limits) {
   if (!limits.is_object()) {
-    throw std::invalid_argument("limits: got '" + limits.dump() +
+    throw std::invalid_argument("limits: got '" + quoted_value(limits) +
                                 "', expected an object of limit names and values");
   }
   for (const auto& [key, value] : limits.items()) {
@@ -54,11 +56,11 @@ void validate_limits(const nlohmann::json& limits) {
       list += list.empty() ? k : std::string(", ") + k;
     }
     if (!known) {
-      throw std::invalid_argument("limits." + key + ": unknown limit (value '" + value.dump() +
-                                  "'), expected one of: " + list);
+      throw std::invalid_argument("limits." + quoted_value(key) + ": unknown limit (value '" +
+                                  quoted_value(value) + "'), expected one of: " + list);
     }
     if (!value.is_number() || !(value.get<double>() > 0)) {
-      throw std::invalid_argument("limits." + key + ": got '" + value.dump() +
+      throw std::invalid_argument("limits." + key + ": got '" + quoted_value(value) +
                                   "', expected a number > 0");
     }
   }

@@ -142,6 +142,44 @@ nlohmann::json StaticTeOutcome::to_json() const {
 
 StaticTeProcedure::StaticTeProcedure(StaticTeOptions options) : options_(std::move(options)) {}
 
+RunPlan StaticTeProcedure::plan(const bench::BenchDescription& bench) const {
+  const auto& o = options_;
+  bench.sense.validate();
+  RunPlan plan;
+  for (std::size_t i = 0; i < o.loads_nm.size(); ++i) {
+    plan.brake_torques_nm.push_back(
+        {"static.loads_nm[" + std::to_string(i) + "]", o.loads_nm[i], "N*m"});
+  }
+  plan.input_speeds_rad_s.push_back({"static.move_speed_rad_s", o.move_speed_rad_s, "rad/s"});
+  if (o.approach_rad > 0) {
+    plan.input_speeds_rad_s.push_back(
+        {"static.approach_speed_rad_s", o.approach_speed_rad_s, "rad/s"});
+  }
+  // As run(): per load the brake settles, then two passes of a run-up and, at each position,
+  // a move to the approach point, the slow approach, the settle and the window. The settle is
+  // taken as one settle window of quiet plus two blocks to see it; a timeout would be
+  // max_settle_s.
+  const double step = 2 * std::numbers::pi * bench.sense.ratio / o.positions;
+  const double run_up = o.run_up_steps * step;
+  double position_s = o.settle.window_s + 2 * o.settle_block_s + o.window_s;
+  if (o.approach_rad > 0) {
+    position_s += planned_move_s(step - o.approach_rad, o.move_speed_rad_s) +
+                  planned_move_s(o.approach_rad, o.approach_speed_rad_s);
+  } else {
+    position_s += planned_move_s(step, o.move_speed_rad_s);
+  }
+  const double pass_s = planned_move_s(run_up, o.move_speed_rad_s) + o.positions * position_s;
+  const auto loads = static_cast<double>(o.loads_nm.size());
+  plan.bench_time_s = loads * (o.brake_settle_s + 2 * pass_s);
+  std::ostringstream terms;
+  terms << "static.positions " << o.positions << " x " << o.loads_nm.size()
+        << " static.loads_nm x 2 directions x " << position_s
+        << " s (moves at static.move_speed_rad_s and static.approach_speed_rad_s, settle, "
+           "static.window_s)";
+  plan.duration_terms = terms.str();
+  return plan;
+}
+
 StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
                                        const ProcedureProgress& progress) const {
   const auto& o = options_;

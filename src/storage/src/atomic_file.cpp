@@ -13,6 +13,13 @@ namespace {
 [[noreturn]] void fail(const std::string& what, const std::filesystem::path& path) {
   throw std::system_error(errno, std::generic_category(), what + " " + path.string());
 }
+// A failed write leaves no temp file behind (a full disk must not fill up with them).
+[[noreturn]] void fail_and_unlink(const std::string& what, const std::filesystem::path& temp) {
+  const int e = errno;
+  ::unlink(temp.c_str());
+  errno = e;
+  fail(what, temp);
+}
 }  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view content) {
@@ -29,7 +36,7 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
       const int e = errno;
       ::close(fd);
       errno = e;
-      fail("atomic write: write", temp);
+      fail_and_unlink("atomic write: write", temp);
     }
     p += n;
     left -= static_cast<std::size_t>(n);
@@ -38,10 +45,15 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view c
     const int e = errno;
     ::close(fd);
     errno = e;
-    fail("atomic write: fsync", temp);
+    fail_and_unlink("atomic write: fsync", temp);
   }
-  ::close(fd);
-  if (::rename(temp.c_str(), path.c_str()) != 0) fail("atomic write: rename to", path);
+  if (::close(fd) != 0) fail_and_unlink("atomic write: close", temp);
+  if (::rename(temp.c_str(), path.c_str()) != 0) {
+    const int e = errno;
+    ::unlink(temp.c_str());
+    errno = e;
+    fail("atomic write: rename to", path);
+  }
   const std::filesystem::path dir = path.parent_path().empty() ? "." : path.parent_path();
   const int dfd = ::open(dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
   if (dfd >= 0) {

@@ -2,6 +2,7 @@
 
 #include <sqlite3.h>
 #include <sys/stat.h>
+#include <unistd.h>
 
 #include <cerrno>
 #include <chrono>
@@ -232,19 +233,29 @@ std::string RunStore::create_run(const std::string& procedure, const std::string
   run.software_version = software_version_;
   run.config_hash = sha256_hex(config_text);
   const auto p = paths(run.id);
-  write_file_atomically(p.config, config_text);
-  write_status_file(run);
+  try {
+    write_file_atomically(p.config, config_text);
+    write_status_file(run);
 
-  Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
-                       ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7)");
-  s.bind(1, run.id);
-  s.bind(2, run.started_at);
-  s.bind(3, run.unit_serial);
-  s.bind(4, run.procedure);
-  s.bind(5, run.limits_json);
-  s.bind(6, run.software_version);
-  s.bind(7, run.config_hash);
-  s.step();
+    Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
+                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7)");
+    s.bind(1, run.id);
+    s.bind(2, run.started_at);
+    s.bind(3, run.unit_serial);
+    s.bind(4, run.procedure);
+    s.bind(5, run.limits_json);
+    s.bind(6, run.software_version);
+    s.bind(7, run.config_hash);
+    s.step();
+  } catch (...) {
+    // No orphan folder (a full disk would otherwise collect one per refused start), and only
+    // what this call wrote: the folder is fresh from claim_id(), rmdir() removes it only empty.
+    std::error_code ignored;
+    std::filesystem::remove(p.status, ignored);
+    std::filesystem::remove(p.config, ignored);
+    ::rmdir(p.dir.c_str());
+    throw;
+  }
   return run.id;
 }
 
@@ -270,7 +281,12 @@ void RunStore::finish_run(const std::string& id, RunStatus status, const std::st
   if (sqlite3_changes(db_) != 1) {
     throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
   }
-  write_status_file(*find_run(id));
+  // The index row is the record; status.json is its copy for readers of the folder, and a
+  // full disk must not turn a finished run back into an exception.
+  try {
+    write_status_file(*find_run(id));
+  } catch (const std::system_error&) {  // NOLINT(bugprone-empty-catch)
+  }
 }
 
 std::vector<std::string> RunStore::recover() {

@@ -12,6 +12,7 @@
 #include "wavebench/procedures/dynamic_te_analysis.hpp"
 #include "wavebench/procedures/dynamic_te_input.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
+#include "wavebench/runs/run_plan.hpp"
 
 namespace wavebench::runs {
 
@@ -50,6 +51,9 @@ procedures::GearTeeth gear_teeth(const model::GearParams& twin, double ratio);
 class DynamicTeProcedure {
  public:
   explicit DynamicTeProcedure(DynamicTeOptions options);
+  // What run() will command on `bench` and for how long, without touching it. Throws
+  // std::invalid_argument where run() would refuse the options on this bench.
+  RunPlan plan(const bench::BenchDescription& bench) const;
   // Throws bench::BenchAborted when the bench trips.
   DynamicTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
 

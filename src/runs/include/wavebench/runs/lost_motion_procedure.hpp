@@ -13,6 +13,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/lost_motion_fit.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
+#include "wavebench/runs/run_plan.hpp"
 
 namespace wavebench::runs {
 
@@ -43,6 +44,9 @@ struct LostMotionOutcome {
 class LostMotionProcedure {
  public:
   explicit LostMotionProcedure(LostMotionOptions options);
+  // What run() will command on `bench` and for how long, without touching it. Throws
+  // std::invalid_argument where run() would refuse the options on this bench.
+  RunPlan plan(const bench::BenchDescription& bench) const;
   // Throws bench::BenchAborted when the bench trips, std::invalid_argument when the ladder
   // cannot be built (no rated torque).
   LostMotionOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;

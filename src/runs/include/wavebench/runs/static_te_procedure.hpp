@@ -12,6 +12,7 @@
 #include "wavebench/procedures/settle_detector.hpp"
 #include "wavebench/procedures/static_te_statistics.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
+#include "wavebench/runs/run_plan.hpp"
 
 namespace wavebench::runs {
 
@@ -47,6 +48,9 @@ struct StaticTeOutcome {
 class StaticTeProcedure {
  public:
   explicit StaticTeProcedure(StaticTeOptions options);
+  // What run() will command on `bench` and for how long, without touching it. Throws
+  // std::invalid_argument where run() would refuse the options on this bench.
+  RunPlan plan(const bench::BenchDescription& bench) const;
   // Throws bench::BenchAborted when the bench trips.
   StaticTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
 

@@ -61,11 +61,15 @@ class RunStore {
   RunStore(const RunStore&) = delete;
   RunStore& operator=(const RunStore&) = delete;
 
-  // Claims a new id, writes the config copy and status, indexes the run as running.
+  // Claims a new id, writes the config copy and status, indexes the run as running. When a
+  // step fails (disk full, read-only, index locked) it removes what it created and rethrows:
+  // no folder without an index row.
   std::string create_run(const std::string& procedure, const std::string& unit_serial,
                          const std::string& config_text, const std::string& limits_json = "{}");
   void write_results(const std::string& id, const nlohmann::json& results);
-  // status is kComplete or kAborted; throws std::invalid_argument for an unknown id.
+  // status is kComplete or kAborted; throws std::invalid_argument for an unknown id. The
+  // index is updated first; status.json is rewritten where it still can be (a full disk does
+  // not make this throw once the index holds the status).
   void finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
                   std::optional<bool> pass = std::nullopt);
   // Marks every run left `running` as `incomplete`; returns their ids.

@@ -64,9 +64,14 @@ class SampleLogWriter {
   std::uint64_t records_flushed() const { return flushed_; }
   const SyncGapTotals& gap_totals() const { return gaps_.totals(); }
   const std::filesystem::path& path() const { return path_; }
+  // errno of the first failed write or fdatasync, 0 while none failed. After a failure the
+  // writer touches the file no more (a failing disk can be slow to fail again): append() and
+  // flush() rethrow the first error, close() only closes the descriptor.
+  int write_error() const { return write_error_; }
 
  private:
   void write_all(const unsigned char* data, std::size_t size);
+  [[noreturn]] void fail(int error, const std::string& what);
 
   std::filesystem::path path_;
   SampleLogWriterOptions options_;
@@ -77,6 +82,8 @@ class SampleLogWriter {
   std::uint64_t flushed_ = 0;
   std::uint64_t synced_ = 0;
   std::chrono::steady_clock::time_point last_flush_;
+  int write_error_ = 0;
+  std::string write_error_what_;
 };
 
 struct SampleLogContents {
@@ -90,6 +97,28 @@ struct SampleLogContents {
 
 // Throws std::runtime_error naming the path and what is wrong with the header.
 SampleLogContents read_sample_log(const std::filesystem::path& path);
+
+// A page of a log: records [from, from + count) and what the file holds, reading only the
+// header and those records (records are fixed-size, so a page costs what it returns whatever
+// the log's length). For GET /api/runs/{id}/samples.
+struct SampleLogPage {
+  SampleLogHeader header;
+  std::uint64_t from = 0;           // as asked
+  std::vector<SyncSample> samples;  // records from, from + 1, ... up to a corrupt one
+  std::uint64_t total_records = 0;  // complete records in the file (from its size)
+  std::size_t torn_tail_bytes = 0;  // bytes of an incomplete last record (ignored)
+  // A record in the page failed its checksum: the page stops before it, as read_sample_log
+  // stops. Records before `from` are not read, so corruption before the page is not seen.
+  bool corrupt_record = false;
+  std::uint64_t corrupt_at_index = 0;
+};
+
+inline constexpr std::size_t kMaxSampleLogPageRecords = std::size_t{1} << 20;  // 96 MiB
+
+// Throws std::runtime_error naming the path and what is wrong with the header, and
+// std::invalid_argument when count > kMaxSampleLogPageRecords. A page past the end is empty.
+SampleLogPage read_sample_log_page(const std::filesystem::path& path, std::uint64_t from,
+                                   std::size_t count);
 
 // Encoding, exposed for tests and tools that check the bytes.
 std::vector<unsigned char> encode_sample_log_header(const SampleLogHeader& header);

@@ -1,0 +1,27 @@
+#pragma once
+// A RunRequest read into its procedure and the run's own options (limits, twin calibration):
+// shared by the request check and execute_run, which runs what the check accepted.
+
+#include <nlohmann/json.hpp>
+#include <variant>
+
+#include "wavebench/runs/dynamic_te_procedure.hpp"
+#include "wavebench/runs/lost_motion_procedure.hpp"
+#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/runs/static_te_procedure.hpp"
+
+namespace wavebench::runs {
+
+using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure>;
+
+struct ParsedRequest {
+  AnyProcedure procedure;
+  nlohmann::json procedure_options;
+  nlohmann::json limits = nlohmann::json::object();
+  bool calibrate_twin = true;
+};
+
+// Throws std::invalid_argument naming the key, the value and what was expected.
+ParsedRequest parse_request(const RunRequest& request);
+
+}  // namespace wavebench::runs
