@@ -1,5 +1,7 @@
 // `wavebench status|start|abort|stop|reset|runs|export`: the CLI as the daemon's client. The
 // work is in wavebench/daemon/client_commands.hpp; this file is the command line.
+#include <algorithm>
+#include <chrono>
 #include <cstdlib>
 #include <iostream>
 #include <memory>
@@ -16,11 +18,14 @@ namespace {
 struct DaemonClientOptions {
   std::string daemon_url;
   std::string token_file;
+  double timeout_s = 45;
 
   daemon::ClientContext context() const {
     daemon::ClientContext ctx;
     ctx.daemon_url = daemon_url;
     ctx.token_file = token_file;
+    ctx.timeout = std::chrono::milliseconds(static_cast<long long>(timeout_s * 1e3));
+    ctx.connect_timeout = std::min(ctx.timeout, std::chrono::milliseconds(5000));
     ctx.out = &std::cout;
     ctx.err = &std::cerr;
     return ctx;
@@ -40,6 +45,10 @@ CLI::App* daemon_subcommand(CLI::App& app, const std::string& name, const std::s
   sub->add_option("--token-file", options->token_file,
                   "the daemon's token (default $WAVEBENCH_TOKEN_FILE or "
                   "~/.config/wavebench/daemon.token)");
+  sub->add_option("--timeout", options->timeout_s,
+                  "seconds to wait for each answer of the daemon (connecting: at most 5)")
+      ->check(CLI::Range(0.1, 3600.0))
+      ->capture_default_str();
   return sub;
 }
 

@@ -32,6 +32,8 @@ class DaemonProcessTest : public ::testing::Test {
     runs_ = dir_ / "runs";
     token_file_ = dir_ / "token";
     std::ofstream(token_file_) << kTokenText << "\n";
+    std::filesystem::permissions(
+        token_file_, std::filesystem::perms::owner_read | std::filesystem::perms::owner_write);
   }
 
   std::unique_ptr<DaemonProcess> start(const std::string& config = "sim") {

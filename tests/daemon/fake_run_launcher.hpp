@@ -3,6 +3,7 @@
 // anything is created; the run's samples go to samples.wbs as acquired; a trip finishes the
 // run aborted with the trip's reason. Option "seconds" is the bench time the run takes.
 
+#include <atomic>
 #include <stdexcept>
 
 #include "wavebench/daemon/run_launcher.hpp"
@@ -27,19 +28,8 @@ class FakeRunLauncher : public RunLauncher {
   runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
                           const runs::RunRequest& request,
                           const runs::ProgressSink& progress) override {
-    if (request.procedure != "static" && request.procedure != "dynamic" &&
-        request.procedure != "lost-motion") {
-      throw std::invalid_argument("procedure: got '" + request.procedure +
-                                  "', expected static, dynamic or lost-motion");
-    }
-    double seconds = 0.2;
-    if (request.options.contains("seconds")) {
-      const auto& v = request.options["seconds"];
-      if (!v.is_number() || v.get<double>() <= 0) {
-        throw std::invalid_argument("seconds: got " + v.dump() + ", expected a positive number");
-      }
-      seconds = v.get<double>();
-    }
+    check(request, bench.description(), store.root());
+    const double seconds = request.options.value("seconds", 0.2);
     runs::RunOutcome outcome;
     outcome.run_id =
         store.create_run(request.procedure, bench.description().unit_serial, request.config_text);
@@ -75,7 +65,24 @@ class FakeRunLauncher : public RunLauncher {
     return outcome;
   }
 
+  void check(const runs::RunRequest& request, const bench::BenchDescription& /*bench*/,
+             const std::filesystem::path& /*runs_root*/) const override {
+    if (request.procedure != "static" && request.procedure != "dynamic" &&
+        request.procedure != "lost-motion") {
+      throw std::invalid_argument("procedure: got '" + request.procedure +
+                                  "', expected static, dynamic or lost-motion");
+    }
+    if (request.options.contains("seconds")) {
+      const auto& v = request.options["seconds"];
+      if (!v.is_number() || v.get<double>() <= 0) {
+        throw std::invalid_argument("seconds: got " + v.dump() + ", expected a positive number");
+      }
+    }
+    ++checks;
+  }
+
   int runs_launched = 0;
+  mutable std::atomic<int> checks{0};
 };
 
 }  // namespace wavebench::daemon::testing

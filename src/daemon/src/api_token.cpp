@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdio>
 #include <cstdlib>
 #include <cstring>
 #include <fstream>
@@ -39,22 +40,100 @@ std::string errno_text() {
   return std::strerror(errno);
 }
 
-}  // namespace
+// The file's text and status, read through one descriptor (no check-then-open race); a FIFO
+// or device is refused without blocking on it.
+struct TokenFileText {
+  std::string text;
+  struct stat st {};
+};
 
-std::string read_token(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) {
+TokenFileText read_token_file(const std::filesystem::path& path) {
+  const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK | O_NOCTTY);
+  if (fd < 0) {
     throw std::runtime_error("token file " + path.string() + ": cannot read (" + errno_text() +
                              ")");
   }
-  std::stringstream text;
-  text << in.rdbuf();
-  auto token = trimmed(text.str());
+  TokenFileText r;
+  const auto fail = [&](const std::string& why) {
+    ::close(fd);
+    throw std::runtime_error("token file " + path.string() + ": " + why);
+  };
+  if (::fstat(fd, &r.st) != 0) fail("cannot stat (" + errno_text() + ")");
+  const auto refuse = [&](const std::string& why) {
+    ::close(fd);
+    throw TokenFileRefused("token file " + path.string() + ": " + why);
+  };
+  if (!S_ISREG(r.st.st_mode)) refuse("not a regular file; expected a file holding the token");
+  if (r.st.st_size > static_cast<off_t>(kMaxTokenFileBytes)) {
+    refuse(std::to_string(r.st.st_size) + " bytes; expected a token of at most " +
+           std::to_string(kMaxTokenFileBytes) + " bytes");
+  }
+  char buffer[kMaxTokenFileBytes + 1];
+  std::size_t used = 0;
+  for (;;) {
+    const auto n = ::read(fd, buffer + used, sizeof buffer - used);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) fail("cannot read (" + errno_text() + ")");
+    if (n == 0 || (used += static_cast<std::size_t>(n)) == sizeof buffer) break;
+  }
+  ::close(fd);
+  if (used > kMaxTokenFileBytes) {
+    throw std::runtime_error("token file " + path.string() + ": grew past " +
+                             std::to_string(kMaxTokenFileBytes) + " bytes while read");
+  }
+  r.text.assign(buffer, used);
+  return r;
+}
+
+std::string token_of(const std::filesystem::path& path, const std::string& text) {
+  auto token = trimmed(text);
   if (token.empty()) {
-    throw std::runtime_error("token file " + path.string() + ": empty; expected a token");
+    throw TokenFileRefused("token file " + path.string() + ": empty; expected a token");
+  }
+  for (const char c : token) {
+    if (c <= ' ' || c > '~') {
+      throw TokenFileRefused("token file " + path.string() +
+                             ": holds a space, control or non-ASCII character; expected one "
+                             "token of printable ASCII characters");
+    }
   }
   return token;
 }
+
+}  // namespace
+
+std::string read_token(const std::filesystem::path& path) {
+  return token_of(path, read_token_file(path).text);
+}
+
+namespace {
+
+std::string checked_daemon_token(const std::filesystem::path& path) {
+  const auto file = read_token_file(path);
+  const auto mode = file.st.st_mode & 0777;
+  if ((mode & 077) != 0) {
+    char octal[8];
+    std::snprintf(octal, sizeof octal, "%04o", mode);
+    throw TokenFileRefused("token file " + path.string() + ": mode " + octal +
+                           " lets other users read or change it; expected 0600 (chmod 600 " +
+                           path.string() + ")");
+  }
+  if (file.st.st_uid != ::geteuid()) {
+    throw TokenFileRefused("token file " + path.string() + ": owned by uid " +
+                           std::to_string(file.st.st_uid) + "; expected the daemon's own uid " +
+                           std::to_string(::geteuid()));
+  }
+  auto token = token_of(path, file.text);
+  if (token.size() < kMinTokenLength) {
+    throw TokenFileRefused("token file " + path.string() + ": a token of " +
+                           std::to_string(token.size()) + " characters; expected at least " +
+                           std::to_string(kMinTokenLength) +
+                           " (delete the file and the daemon creates a random one)");
+  }
+  return token;
+}
+
+}  // namespace
 
 std::string load_or_create_token(const std::filesystem::path& path) {
   if (!path.parent_path().empty()) {
@@ -68,7 +147,7 @@ std::string load_or_create_token(const std::filesystem::path& path) {
       throw std::runtime_error("token file " + path.string() + ": cannot create (" + errno_text() +
                                ")");
     }
-    return read_token(path);
+    return checked_daemon_token(path);
   }
   const std::string token = new_token();
   const std::string line = token + "\n";

@@ -207,6 +207,7 @@ void BenchThread::run_job(Job& job) {
     job.settle({StartOutcome::Kind::kBadRequest, "", e.what()});
     std::lock_guard lock(mutex_);
     run_.reset();
+    run_ended_.notify_all();
     return;
   } catch (const std::exception& e) {
     std::string id;
@@ -225,6 +226,7 @@ void BenchThread::run_job(Job& job) {
   std::lock_guard lock(mutex_);
   run_.reset();
   last_run_ = finished;
+  run_ended_.notify_all();
 }
 
 void BenchThread::reset_job(Job& job) {
@@ -257,6 +259,19 @@ StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milli
   job->request = std::move(request);
   job->request.config_text = config_text_;
   auto started = job->started.get_future();
+  std::optional<bench::BenchDescription> description;
+  {
+    std::lock_guard lock(mutex_);
+    description = description_;
+  }
+  // Malformed before busy: a bad request is answered as such whatever the bench is doing.
+  if (description) {
+    try {
+      launcher_.check(job->request, *description, store_.root());
+    } catch (const std::invalid_argument& e) {
+      return {StartOutcome::Kind::kBadRequest, "", e.what()};
+    }
+  }
   {
     std::lock_guard lock(mutex_);
     if (stopping_ || !bench_) return {StartOutcome::Kind::kRejected, "", "the daemon is stopping"};
@@ -337,6 +352,18 @@ BenchStatus BenchThread::status() const {
   }
   s.state = daemon_state_of(s.lifecycle, run_.has_value() || run_queued_);
   return s;
+}
+
+void BenchThread::emergency_stop(const std::string& reason,
+                                 std::chrono::milliseconds wait) noexcept {
+  try {
+    std::unique_lock lock(mutex_);
+    if (!bench_) return;
+    bench_->request_stop(reason);
+    if (std::this_thread::get_id() == thread_.get_id()) return;
+    run_ended_.wait_for(lock, wait, [&] { return !run_.has_value(); });
+  } catch (...) {
+  }
 }
 
 void BenchThread::shutdown(const std::string& reason) {

@@ -49,7 +49,8 @@ int refused(const ClientContext& ctx, const std::string& what, const DaemonReply
 template <typename Body>
 int with_client(const ClientContext& ctx, bool needs_token, Body body) {
   try {
-    DaemonClient client(ctx.daemon_url, needs_token ? required_token(ctx) : token_or_empty(ctx));
+    DaemonClient client(ctx.daemon_url, needs_token ? required_token(ctx) : token_or_empty(ctx),
+                        ctx.timeout, ctx.connect_timeout);
     return body(client);
   } catch (const std::invalid_argument& e) {
     *ctx.err << "wavebench: " << e.what() << "\n";

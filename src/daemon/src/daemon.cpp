@@ -23,7 +23,7 @@ Daemon::Daemon(DaemonSetup setup)
       store_(setup_.runs_dir, setup_.software_version),
       live_(setup_.live_capacity),
       bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
-      api_(bench_thread_, store_, live_, setup_.token) {
+      api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts)) {
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(),
@@ -41,9 +41,33 @@ void Daemon::start() {
       [this](const ApiRequest& request) { return api_.handle(request); });
   server_->start();
   for (int i = 0; i < setup_.api_threads; ++i) {
-    api_threads_.emplace_back([this] { io_.run(); });
+    api_threads_.emplace_back([this] { serve_api(); });
   }
   spdlog::info("listening on http://{}:{}", setup_.listen_address, server_->port());
+}
+
+void Daemon::serve_api() noexcept {
+  // Handlers answer errors themselves; anything that still escapes is a bug, and must not end
+  // the process with the bench moving: the bench goes safe, and the thread goes on serving.
+  for (;;) {
+    try {
+      io_.run();
+      return;
+    } catch (const std::exception& e) {
+      spdlog::critical("API thread: {}; bench to its safe state", e.what());
+      bench_thread_.stop(std::string("internal error in the API: ") + e.what());
+    } catch (...) {
+      spdlog::critical("API thread: unknown exception; bench to its safe state");
+      bench_thread_.stop("internal error in the API");
+    }
+  }
+}
+
+void Daemon::emergency_stop(const std::string& reason) noexcept {
+  try {
+    bench_thread_.emergency_stop(reason, std::chrono::seconds(5));
+  } catch (...) {
+  }
 }
 
 unsigned short Daemon::port() const {

@@ -7,6 +7,8 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/printable_text.hpp"
+#include "wavebench/daemon/request_json.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -33,6 +35,40 @@ std::optional<std::uint64_t> unsigned_param(const HttpTarget& target, const std:
     throw BadParameter(key + ": got '" + text + "', expected a non-negative integer");
   }
   return value;
+}
+
+// Run ids are UTC timestamps, "20261122T045843.123456Z" (run_store.hpp): anything else is not
+// a run, and never reaches the file system.
+bool looks_like_run_id(const std::string& id) {
+  if (id.size() != 23 || id[8] != 'T' || id[15] != '.' || id[22] != 'Z') return false;
+  for (std::size_t i = 0; i < 22; ++i) {
+    if (i == 8 || i == 15) continue;
+    if (id[i] < '0' || id[i] > '9') return false;
+  }
+  return true;
+}
+
+// Holds one of the API's read slots for the duration of a costly read.
+class ReadSlot {
+ public:
+  explicit ReadSlot(std::counting_semaphore<DaemonApi::kMaxConcurrentReads>& s)
+      : sem_(s), held_(s.try_acquire_for(std::chrono::milliseconds(50))) {}
+  ~ReadSlot() {
+    if (held_) sem_.release();
+  }
+  ReadSlot(const ReadSlot&) = delete;
+  ReadSlot& operator=(const ReadSlot&) = delete;
+  bool held() const { return held_; }
+
+ private:
+  std::counting_semaphore<DaemonApi::kMaxConcurrentReads>& sem_;
+  bool held_;
+};
+
+ApiResponse busy_reading() {
+  return api_error(503, "busy",
+                   std::to_string(DaemonApi::kMaxConcurrentReads) +
+                       " reads of run data are in progress; retry shortly");
 }
 
 nlohmann::json description_json(const bench::BenchDescription& d) {
@@ -66,19 +102,66 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
 }  // namespace
 
 ApiResponse api_error(int status, const std::string& error, const std::string& detail) {
-  return {status, {{"error", error}, {"detail", detail}}};
+  return {status, {{"error", error}, {"detail", printable_text(detail, 1000)}}};
+}
+
+std::string response_text(const ApiResponse& response) {
+  try {
+    return response.body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  } catch (const std::exception&) {
+    return R"({"error":"internal error","detail":"the answer could not be serialised"})";
+  }
 }
 
 DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
-                     std::string token)
-    : bench_(bench), store_(store), live_(live), token_(std::move(token)) {}
+                     std::string token, HostCheck host_check)
+    : bench_(bench),
+      store_(store),
+      live_(live),
+      token_(std::move(token)),
+      host_check_(std::move(host_check)),
+      reads_(std::make_unique<std::counting_semaphore<kMaxConcurrentReads>>(kMaxConcurrentReads)) {}
 
-ApiResponse DaemonApi::handle(const ApiRequest& request) const {
+ApiResponse DaemonApi::handle(const ApiRequest& request) const noexcept {
+  try {
+    if (request.host.empty()) {
+      return api_error(400, "bad request", "Host: missing; expected the daemon's address");
+    }
+    if (!host_check_.allows(request.host)) {
+      return api_error(421, "misdirected request",
+                       "Host: got '" + request.host + "', expected " + host_check_.expected() +
+                           " (a page of another site must not reach the bench)");
+    }
+    return route(request);
+  } catch (const std::exception& e) {
+    return api_error(500, "internal error", e.what());
+  } catch (...) {
+    return api_error(500, "internal error", "unknown exception");
+  }
+}
+
+ApiResponse DaemonApi::route(const ApiRequest& request) const {
   HttpTarget target;
   try {
     target = parse_http_target(request.target);
   } catch (const std::invalid_argument& e) {
     return api_error(400, "bad request", e.what());
+  }
+  // Names, filters and ids are text: bytes that are not printable UTF-8 can match nothing,
+  // and are refused before they reach the index or the file system.
+  const auto printable = [](const std::string& text) {
+    return is_valid_utf8(text) && printable_text(text, text.size() + 1) == text;
+  };
+  for (const auto& [key, value] : target.query) {
+    if (!printable(key) || !printable(value)) {
+      return api_error(400, "bad request",
+                       "query '" + key + "': got '" + value + "', expected printable UTF-8 text");
+    }
+  }
+  for (const auto& segment : target.segments) {
+    if (!printable(segment)) {
+      return api_error(404, "not found", "no resource at " + target.path);
+    }
   }
   const auto& seg = target.segments;
   if (seg.empty() || seg[0] != "api") {
@@ -157,11 +240,19 @@ ApiResponse DaemonApi::status() const {
 }
 
 ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
-  const auto body = nlohmann::json::parse(request.body, nullptr, false);
-  if (body.is_discarded() || !body.is_object()) {
+  const auto parsed = parse_request_json(request.body);
+  if (!parsed.error.empty()) return api_error(400, "bad request", parsed.error);
+  const auto& body = parsed.value;
+  if (!body.is_object()) {
     return api_error(400, "bad request",
-                     "body: got '" + request.body.substr(0, 200) +
+                     "body: got '" + printable_text(request.body) +
                          "', expected a JSON object {\"procedure\": ..., \"options\": {...}}");
+  }
+  for (const auto& [key, value] : body.items()) {
+    if (key != "procedure" && key != "options" && key != "twin" && key != "report") {
+      return api_error(400, "bad request",
+                       key + ": unknown key; expected procedure, options, twin or report");
+    }
   }
   runs::RunRequest run;
   const auto procedure = body.find("procedure");
@@ -255,6 +346,10 @@ ApiResponse DaemonApi::list_runs(const HttpTarget& target) const {
 }
 
 ApiResponse DaemonApi::run_detail(const std::string& id) const {
+  if (!looks_like_run_id(id))
+    return api_error(404, "not found", "run '" + id + "' is not a run id");
+  const ReadSlot slot(*reads_);
+  if (!slot.held()) return busy_reading();
   const auto run = store_.find_run(id);
   if (!run) return api_error(404, "not found", "run '" + id + "' is not in the index");
   nlohmann::json j = {{"run", storage::to_json(*run)}};
@@ -281,6 +376,10 @@ ApiResponse DaemonApi::run_samples(const std::string& id, const HttpTarget& targ
     throw BadParameter("limit: got '" + std::to_string(limit) + "', expected at most " +
                        std::to_string(kMaxSampleLimit));
   }
+  if (!looks_like_run_id(id))
+    return api_error(404, "not found", "run '" + id + "' is not a run id");
+  const ReadSlot slot(*reads_);
+  if (!slot.held()) return busy_reading();
   if (!store_.find_run(id)) {
     return api_error(404, "not found", "run '" + id + "' is not in the index");
   }

@@ -53,8 +53,12 @@ std::string DaemonReply::error_text() const {
 }
 
 DaemonClient::DaemonClient(const std::string& url, std::string token,
-                           std::chrono::milliseconds timeout)
-    : endpoint_(parse_daemon_url(url)), token_(std::move(token)), timeout_(timeout) {}
+                           std::chrono::milliseconds timeout,
+                           std::chrono::milliseconds connect_timeout)
+    : endpoint_(parse_daemon_url(url)),
+      token_(std::move(token)),
+      timeout_(timeout),
+      connect_timeout_(connect_timeout) {}
 
 DaemonReply DaemonClient::get(const std::string& target) const {
   return request(false, target, "");
@@ -67,44 +71,78 @@ DaemonReply DaemonClient::post(const std::string& target, const nlohmann::json& 
 DaemonReply DaemonClient::request(bool post, const std::string& target,
                                   const std::string& body) const {
   const std::string where = "http://" + endpoint_.host + ":" + endpoint_.port;
-  try {
-    net::io_context io;
-    tcp::resolver resolver(io);
-    beast::tcp_stream stream(io);
-    const auto endpoints = resolver.resolve(endpoint_.host, endpoint_.port);
-    stream.expires_after(timeout_);
-    stream.connect(endpoints);
-
-    http::request<http::string_body> req(post ? http::verb::post : http::verb::get, target, 11);
-    req.set(http::field::host, endpoint_.host);
-    req.set(http::field::user_agent, "wavebench");
-    if (!token_.empty()) req.set(http::field::authorization, "Bearer " + token_);
-    if (post) {
-      req.set(http::field::content_type, "application/json");
-      req.body() = body;
-    }
-    req.keep_alive(false);
-    req.prepare_payload();
-    stream.expires_after(timeout_);
-    http::write(stream, req);
-
-    beast::flat_buffer buffer;
-    http::response_parser<http::string_body> parser;
-    parser.body_limit(256u << 20);
-    stream.expires_after(timeout_);
-    http::read(stream, buffer, parser);
-    beast::error_code ignored;
-    stream.socket().shutdown(tcp::socket::shutdown_both, ignored);
-
-    DaemonReply reply;
-    reply.status = static_cast<int>(parser.get().result_int());
-    reply.body = nlohmann::json::parse(parser.get().body(), nullptr, false);
-    if (reply.body.is_discarded()) reply.body = nullptr;
-    return reply;
-  } catch (const beast::system_error& e) {
-    throw DaemonUnreachable("no daemon answering at " + where + " (" + e.code().message() +
-                            "); is wavebenchd running? (--daemon URL)");
+  // Asynchronous operations with a deadline: Beast's stream timeouts do not apply to its
+  // blocking calls, and a silent server must not hang the CLI.
+  net::io_context io;
+  tcp::resolver resolver(io);
+  beast::tcp_stream stream(io);
+  http::request<http::string_body> req(post ? http::verb::post : http::verb::get, target, 11);
+  req.set(http::field::host, endpoint_.host.find(':') != std::string::npos
+                                 ? "[" + endpoint_.host + "]:" + endpoint_.port
+                                 : endpoint_.host + ":" + endpoint_.port);
+  req.set(http::field::user_agent, "wavebench");
+  if (!token_.empty()) req.set(http::field::authorization, "Bearer " + token_);
+  if (post) {
+    req.set(http::field::content_type, "application/json");
+    req.body() = body;
   }
+  req.keep_alive(false);
+  req.prepare_payload();
+
+  beast::flat_buffer buffer;
+  http::response_parser<http::string_body> parser;
+  parser.body_limit(kMaxReplyBytes);
+  beast::error_code failure;
+  const char* stage = "connect";
+  const auto fail = [&](beast::error_code ec, const char* at) {
+    failure = ec;
+    stage = at;
+  };
+  resolver.async_resolve(
+      endpoint_.host, endpoint_.port, [&](beast::error_code ec, tcp::resolver::results_type r) {
+        if (ec) return fail(ec, "resolve");
+        stream.expires_after(connect_timeout_);
+        stream.async_connect(r, [&](beast::error_code ec2, const tcp::endpoint&) {
+          if (ec2) return fail(ec2, "connect");
+          stream.expires_after(timeout_);
+          http::async_write(stream, req, [&](beast::error_code ec3, std::size_t) {
+            if (ec3) return fail(ec3, "send");
+            http::async_read(stream, buffer, parser, [&](beast::error_code ec4, std::size_t) {
+              if (ec4) return fail(ec4, "answer");
+              beast::error_code ignored;
+              stream.socket().shutdown(tcp::socket::shutdown_both, ignored);
+            });
+          });
+        });
+      });
+  io.run();
+  if (failure) {
+    const bool timed_out = failure == beast::error::timeout;
+    throw DaemonUnreachable(
+        "no daemon answering at " + where + " (" + stage + ": " +
+        (timed_out ? std::string("no answer within ") +
+                         std::to_string(
+                             (std::string_view(stage) == "connect" ? connect_timeout_ : timeout_)
+                                 .count()) +
+                         " ms"
+                   : failure.message()) +
+        "); is wavebenchd running? (--daemon URL)");
+  }
+  DaemonReply reply;
+  reply.status = static_cast<int>(parser.get().result_int());
+  const auto& text = parser.get().body();
+  reply.body = nlohmann::json::parse(text, nullptr, false);
+  // Every answer of the daemon, errors included, is a JSON object: anything else is not it.
+  if (reply.body.is_discarded() || !reply.body.is_object()) {
+    throw DaemonUnreachable("the answer from " + where + " is not the daemon's JSON (HTTP " +
+                            std::to_string(reply.status) + ", " + std::to_string(text.size()) +
+                            " bytes of " +
+                            std::string(parser.get()[http::field::content_type].empty()
+                                            ? "no content type"
+                                            : parser.get()[http::field::content_type]) +
+                            "); is --daemon the wavebenchd API?");
+  }
+  return reply;
 }
 
 }  // namespace wavebench::daemon

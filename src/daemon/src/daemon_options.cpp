@@ -1,5 +1,6 @@
 #include "wavebench/daemon/daemon_options.hpp"
 
+#include <boost/asio/ip/address.hpp>
 #include <charconv>
 #include <stdexcept>
 
@@ -26,7 +27,19 @@ ListenAddress parse_listen_address(const std::string& text) {
     throw fail();
   }
   a.port = static_cast<unsigned short>(value);
+  boost::system::error_code address_error;
+  boost::asio::ip::make_address(a.host, address_error);
+  if (address_error) {
+    throw std::invalid_argument("--listen: got '" + text + "', expected an IP address as HOST ('" +
+                                a.host + "' is not one; e.g. 127.0.0.1:8470 or [::1]:8470)");
+  }
   return a;
+}
+
+bool is_loopback(const ListenAddress& address) {
+  boost::system::error_code ec;
+  const auto ip = boost::asio::ip::make_address(address.host, ec);
+  return !ec && ip.is_loopback();
 }
 
 }  // namespace wavebench::daemon

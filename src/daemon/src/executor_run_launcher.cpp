@@ -1,4 +1,5 @@
 #include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/runs/run_request_check.hpp"
 
 namespace wavebench::daemon {
 
@@ -10,6 +11,10 @@ class ExecutorRunLauncher : public RunLauncher {
                           const runs::RunRequest& request,
                           const runs::ProgressSink& progress) override {
     return runs::execute_run(bench, store, request, progress);
+  }
+  void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
+             const std::filesystem::path& runs_root) const override {
+    runs::check_run_request(request, bench, runs_root);
   }
 };
 

@@ -9,6 +9,8 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "wavebench/daemon/printable_text.hpp"
+
 namespace wavebench::daemon {
 
 namespace beast = boost::beast;
@@ -19,7 +21,20 @@ using tcp = net::ip::tcp;
 namespace {
 
 constexpr std::uint64_t kBodyLimit = 1 << 20;
+constexpr std::uint32_t kHeaderLimit = 16 << 10;
 constexpr auto kIdleTimeout = std::chrono::seconds(60);
+
+// A parse error of Beast's HTTP parser: the client sent something that is not a request we
+// take, and gets a 4xx answer naming it before the connection closes.
+ApiResponse parse_error_answer(beast::error_code ec) {
+  if (ec == http::error::body_limit) {
+    return api_error(413, "payload too large", "the request body is over 1 MiB");
+  }
+  if (ec == http::error::header_limit) {
+    return api_error(431, "request header fields too large", "the request's header is over 16 KiB");
+  }
+  return api_error(400, "bad request", "not an HTTP/1.1 request we take (" + ec.message() + ")");
+}
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
@@ -34,6 +49,7 @@ class Session : public std::enable_shared_from_this<Session> {
   void read() {
     parser_.emplace();
     parser_->body_limit(kBodyLimit);
+    parser_->header_limit(kHeaderLimit);
     stream_.expires_after(kIdleTimeout);
     http::async_read(
         stream_, buffer_, *parser_,
@@ -45,8 +61,8 @@ class Session : public std::enable_shared_from_this<Session> {
       close();
       return;
     }
-    if (ec == http::error::body_limit) {
-      respond(api_error(413, "payload too large", "the request body is over 1 MiB"), false, 11);
+    if (ec && ec.category() == beast::http::make_error_code(http::error::bad_target).category()) {
+      respond(parse_error_answer(ec), false, 11);
       return;
     }
     if (ec) return;  // timeout or reset: nothing to answer
@@ -54,17 +70,24 @@ class Session : public std::enable_shared_from_this<Session> {
     ApiRequest api;
     api.method = std::string(request.method_string());
     api.target = std::string(request.target());
+    // Two Host headers could mean two different things to us and to a proxy: refuse both.
+    if (request.count(http::field::host) == 1) api.host = std::string(request[http::field::host]);
     api.authorization = std::string(request[http::field::authorization]);
     api.body = request.body();
     ApiResponse response;
     try {
       response = (*handler_)(api);
-    } catch (const std::exception& e) {
-      response = api_error(500, "internal error", e.what());
+    } catch (...) {
+      response = api_error(500, "internal error", "the handler failed");
     }
     if (response.status >= 400) {
-      spdlog::debug("{} {} -> {} {}", api.method, api.target, response.status,
-                    response.body.value("detail", ""));
+      const auto detail =
+          response.body.is_object() ? response.body.find("detail") : response.body.end();
+      spdlog::debug("{} {} -> {} {}", printable_text(api.method), printable_text(api.target),
+                    response.status,
+                    detail != response.body.end() && detail->is_string()
+                        ? printable_text(detail->get<std::string>())
+                        : std::string());
     }
     respond(std::move(response), request.keep_alive(), request.version());
   }
@@ -75,7 +98,7 @@ class Session : public std::enable_shared_from_this<Session> {
     message->set(http::field::server, "wavebenchd");
     message->set(http::field::content_type, "application/json");
     message->keep_alive(keep_alive);
-    message->body() = response.body.dump() + "\n";
+    message->body() = response_text(response) + "\n";
     message->prepare_payload();
     http::async_write(stream_, *message,
                       [self = shared_from_this(), message](beast::error_code ec, std::size_t) {

@@ -18,6 +18,7 @@
 #include "wavebench/daemon/daemon.hpp"
 #include "wavebench/daemon/daemon_logging.hpp"
 #include "wavebench/daemon/daemon_options.hpp"
+#include "wavebench/daemon/last_resort_guard.hpp"
 
 namespace {
 
@@ -36,20 +37,30 @@ int run(const daemon::DaemonOptions& options) {
   } catch (const std::exception& e) {
     return fail(2, std::string("--config ") + options.config + ": " + e.what());
   }
+  const auto token_file =
+      options.token_file.empty() ? daemon::default_token_file() : options.token_file;
+  daemon::DaemonSetup setup;
+  try {
+    setup.token = daemon::load_or_create_token(token_file);
+  } catch (const daemon::TokenFileRefused& e) {
+    return fail(2, e.what());
+  } catch (const std::exception& e) {
+    return fail(1, e.what());
+  }
+  // Logging creates the runs folder's logs/: only once every input was accepted.
   try {
     daemon::setup_daemon_logging(
         options.log_dir.empty() ? options.runs_dir / "logs" : options.log_dir, options.verbose);
   } catch (const std::exception& e) {
     return fail(2, e.what());
   }
-  const auto token_file =
-      options.token_file.empty() ? daemon::default_token_file() : options.token_file;
-  daemon::DaemonSetup setup;
-  try {
-    setup.token = daemon::load_or_create_token(token_file);
-  } catch (const std::exception& e) {
-    return fail(1, e.what());
+  if (!daemon::is_loopback(options.listen)) {
+    spdlog::warn(
+        "listening on {} (--allow-remote): the API, and the bench with it, can be "
+        "reached from the network; the token is all that guards it",
+        options.listen.host);
   }
+  setup.allowed_hosts = options.allowed_hosts;
   spdlog::info("wavebenchd {} starting: bench config {}, runs in {}, token in {}",
                WAVEBENCH_SOFTWARE_VERSION, config.source, options.runs_dir.string(),
                token_file.string());
@@ -74,6 +85,11 @@ int run(const daemon::DaemonOptions& options) {
   } catch (const std::exception& e) {
     return fail(1, std::string("--runs ") + options.runs_dir.string() + ": " + e.what());
   }
+  daemon::install_last_resort_guard([&d](const std::string& what) {
+    spdlog::critical("{}: bench to its safe state, active run marked, then abort", what);
+    d->emergency_stop("daemon failure: " + what);
+    spdlog::shutdown();
+  });
   try {
     d->start();
   } catch (const config::ConfigError& e) {
@@ -89,6 +105,7 @@ int run(const daemon::DaemonOptions& options) {
   signals_io.run();
   spdlog::info("{}: safe state, ending the run if one is active", stop_reason);
   d->shutdown(stop_reason);
+  daemon::remove_last_resort_guard();
   return 0;
 }
 
@@ -113,9 +130,26 @@ int main(int argc, char** argv) {
                  "$WAVEBENCH_TOKEN_FILE or ~/.config/wavebench/daemon.token)");
   app.add_option("--log-dir", log_dir, "rotating log folder (default RUNS/logs)");
   app.add_flag("--verbose", options.verbose, "debug logging");
+  app.add_flag("--allow-remote", options.allow_remote,
+               "allow --listen on an address other machines can reach (logged as a warning)");
+  app.add_option("--allow-host", options.allowed_hosts,
+                 "a host name browsers may use to reach the API (repeatable; IP addresses and "
+                 "localhost always work)")
+      ->check([](const std::string& name) {
+        const bool ok = !name.empty() && name.size() <= 253 &&
+                        name.find_first_not_of(
+                            "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUV"
+                            "WXYZ0123456789-.") == std::string::npos;
+        return ok ? std::string() : "got '" + name + "', expected a DNS name";
+      });
   try {
     app.parse(argc, argv);
     options.listen = daemon::parse_listen_address(listen);
+    if (!daemon::is_loopback(options.listen) && !options.allow_remote) {
+      return fail(2, "--listen: got '" + listen +
+                         "', expected a loopback address (127.0.0.1, ::1); to serve the "
+                         "network add --allow-remote");
+    }
   } catch (const CLI::ParseError& e) {
     const int rc = app.exit(e);
     return rc == 0 ? 0 : 2;

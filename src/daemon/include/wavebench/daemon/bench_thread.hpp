@@ -91,6 +91,9 @@ class BenchThread {
   // Trips the bench with `reason` if a run is active, lets the run finish aborted, puts the
   // bench in its safe state, disconnects and joins. Idempotent.
   void shutdown(const std::string& reason);
+  // Trips the bench and, unless called on the bench thread itself, waits up to `wait` for the
+  // active run to be finished (marked aborted) by the bench thread. For the last resort.
+  void emergency_stop(const std::string& reason, std::chrono::milliseconds wait) noexcept;
 
  private:
   class StatsObserver;
@@ -113,6 +116,7 @@ class BenchThread {
 
   mutable std::mutex mutex_;
   std::condition_variable wake_;
+  std::condition_variable run_ended_;
   std::deque<std::shared_ptr<Job>> jobs_;
   bool stopping_ = false;
   bool started_ = false;

@@ -19,6 +19,8 @@ struct ClientContext {
   std::ostream* out = nullptr;       // results
   std::ostream* err = nullptr;       // errors and progress
   std::chrono::milliseconds poll_interval{200};
+  std::chrono::milliseconds timeout{45000};  // per request, answer included
+  std::chrono::milliseconds connect_timeout{5000};
 };
 
 int client_status(const ClientContext& ctx);

@@ -30,7 +30,10 @@ struct DaemonSetup {
   std::string token;
   std::string config_text;  // the bench config, copied into every run
   std::string software_version = WAVEBENCH_SOFTWARE_VERSION;
-  int api_threads = 2;  // a start request waits for its run id; others keep being answered
+  // A start request waits for its run id and DaemonApi::kMaxConcurrentReads costly reads may
+  // run; the rest keep status, abort and stop answered.
+  int api_threads = 6;
+  std::vector<std::string> allowed_hosts;  // Host names beside IP literals and localhost
   std::size_t live_capacity = 8192;
 };
 
@@ -49,6 +52,9 @@ class Daemon {
   // Safe state, the active run finished aborted with `reason`, bench disconnected, server
   // stopped. Idempotent.
   void shutdown(const std::string& reason);
+  // The last resort before the process ends abnormally (std::terminate): trips the bench and
+  // waits a bounded time for the active run to be marked. Callable from any thread.
+  void emergency_stop(const std::string& reason) noexcept;
 
   storage::RunStore& store() { return store_; }
   BenchThread& bench_thread() { return bench_thread_; }
@@ -63,6 +69,8 @@ class Daemon {
   boost::asio::io_context io_;
   std::unique_ptr<HttpServer> server_;
   std::vector<std::thread> api_threads_;
+  void serve_api() noexcept;
+
   bool shut_down_ = false;
 };
 

@@ -13,11 +13,18 @@
 //   GET  /api/live?since=&limit=              latest samples
 //
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
+// A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
+// Reads that cost in proportion to the data (sample pages, run details) run at most
+// kMaxConcurrentReads at a time; the others get 503 at once, so status, abort and stop are
+// always answered.
 
+#include <memory>
 #include <nlohmann/json.hpp>
+#include <semaphore>
 #include <string>
 
 #include "wavebench/daemon/bench_thread.hpp"
+#include "wavebench/daemon/host_check.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
 #include "wavebench/storage/run_store.hpp"
@@ -27,6 +34,7 @@ namespace wavebench::daemon {
 struct ApiRequest {
   std::string method;  // "GET", "POST", ...
   std::string target;  // path and query as sent
+  std::string host;    // the Host header; empty when absent
   std::string authorization;
   std::string body;
 };
@@ -38,12 +46,16 @@ struct ApiResponse {
 
 class DaemonApi {
  public:
-  DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
-            std::string token);
-  // Thread-safe; may block while a run is being started.
-  ApiResponse handle(const ApiRequest& request) const;
+  static constexpr std::ptrdiff_t kMaxConcurrentReads = 2;
+
+  DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
+            HostCheck host_check = HostCheck());
+  // Thread-safe; may block while a run is being started. Never throws: every failure is an
+  // error answer.
+  ApiResponse handle(const ApiRequest& request) const noexcept;
 
  private:
+  ApiResponse route(const ApiRequest& request) const;
   ApiResponse status() const;
   ApiResponse start_run(const ApiRequest& request) const;
   ApiResponse abort_run() const;
@@ -58,8 +70,14 @@ class DaemonApi {
   storage::RunStore& store_;
   LiveSampleBuffer& live_;
   std::string token_;
+  HostCheck host_check_;
+  std::unique_ptr<std::counting_semaphore<kMaxConcurrentReads>> reads_;
 };
 
+// `detail` goes through printable_text(): it may echo what the request sent.
 ApiResponse api_error(int status, const std::string& error, const std::string& detail);
+
+// The answer's body as text; never throws (invalid UTF-8 is replaced).
+std::string response_text(const ApiResponse& response);
 
 }  // namespace wavebench::daemon

@@ -9,7 +9,8 @@
 
 namespace wavebench::daemon {
 
-// The daemon is not there (refused, unreachable, timed out, not speaking HTTP).
+// The daemon is not there (refused, unreachable, timed out, not speaking HTTP, not answering
+// with its JSON).
 class DaemonUnreachable : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
@@ -35,11 +36,19 @@ struct DaemonReply {
 
 class DaemonClient {
  public:
-  // token may be empty for requests that do not move hardware.
-  DaemonClient(const std::string& url, std::string token,
-               std::chrono::milliseconds timeout = std::chrono::seconds(60));
+  static constexpr std::size_t kMaxReplyBytes = 256u << 20;
+  static constexpr std::chrono::milliseconds kDefaultConnectTimeout{5000};
+  // Covers a start request, which the daemon answers once the run has named itself (<= 30 s).
+  static constexpr std::chrono::milliseconds kDefaultTimeout{45000};
 
-  // Throw DaemonUnreachable when no HTTP answer comes back.
+  // token may be empty for requests that do not move hardware. `timeout` bounds sending the
+  // request and reading the whole answer; `connect_timeout` bounds the connection.
+  DaemonClient(const std::string& url, std::string token,
+               std::chrono::milliseconds timeout = kDefaultTimeout,
+               std::chrono::milliseconds connect_timeout = kDefaultConnectTimeout);
+
+  // Throw DaemonUnreachable when no answer comes back in time, or when the answer is not the
+  // daemon's JSON object.
   DaemonReply get(const std::string& target) const;
   DaemonReply post(const std::string& target,
                    const nlohmann::json& body = nlohmann::json::object()) const;
@@ -52,6 +61,7 @@ class DaemonClient {
   DaemonEndpoint endpoint_;
   std::string token_;
   std::chrono::milliseconds timeout_;
+  std::chrono::milliseconds connect_timeout_;
 };
 
 }  // namespace wavebench::daemon

@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 namespace wavebench::daemon {
 
@@ -12,9 +13,11 @@ struct ListenAddress {
   unsigned short port = 8470;
 };
 
-// "HOST:PORT", "[V6]:PORT" or ":PORT" (host stays 127.0.0.1). Throws std::invalid_argument
-// naming --listen, the value and what was expected.
+// "HOST:PORT", "[V6]:PORT" or ":PORT" (host stays 127.0.0.1); HOST is an IP address.
+// Throws std::invalid_argument naming --listen, the value and what was expected.
 ListenAddress parse_listen_address(const std::string& text);
+// Whether the address only this machine can reach (127.0.0.0/8, ::1).
+bool is_loopback(const ListenAddress& address);
 
 struct DaemonOptions {
   std::string config;  // a bench config file, or "sim"
@@ -23,6 +26,9 @@ struct DaemonOptions {
   std::filesystem::path token_file;  // empty: default_token_file()
   std::filesystem::path log_dir;     // empty: <runs_dir>/logs
   bool verbose = false;
+  // Listening beyond loopback exposes the bench to the network: only when asked for.
+  bool allow_remote = false;
+  std::vector<std::string> allowed_hosts;  // Host names accepted beside IP literals, localhost
 };
 
 }  // namespace wavebench::daemon

@@ -2,6 +2,7 @@
 // How the bench thread starts a run. The daemon calls runs::execute_run through this seam so
 // that its own logic can be tested with a stand-in.
 
+#include <filesystem>
 #include <memory>
 
 #include "wavebench/bench/bench.hpp"
@@ -18,6 +19,12 @@ class RunLauncher {
   virtual runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
                                   const runs::RunRequest& request,
                                   const runs::ProgressSink& progress) = 0;
+  // The checks launch() makes before anything is created or moves, without the bench: called
+  // on an API thread before a request is queued, so a malformed or over-limit request is
+  // refused (400) whatever the bench is doing. Thread-safe. Throws std::invalid_argument
+  // naming the key, the value and what was expected.
+  virtual void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
+                     const std::filesystem::path& runs_root) const = 0;
 };
 
 // The real one, runs::execute_run (src/executor_run_launcher.cpp, built with the executable:
