@@ -1,7 +1,7 @@
 // `wavebench sim CONFIG --out DIR`: run a twin case, analyse it, write CSV, JSON and plots.
 // Output goes to a temporary sibling of DIR that is renamed into place at the end, so DIR is
-// either complete or absent; a bad config writes nothing at all.
-#include <unistd.h>
+// either complete or absent; a bad config writes nothing at all. DIR must be new, empty or an
+// earlier sim's output (sim_output_folder.hpp); a signal removes the temporary folder.
 
 #include <algorithm>
 #include <chrono>
@@ -15,6 +15,8 @@
 #include <string>
 
 #include "commands.hpp"
+#include "sim_output_folder.hpp"
+#include "stop_signals.hpp"
 #include "wavebench/analysis/twin_analysis.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/config/twin_case.hpp"
@@ -230,24 +232,6 @@ void print_summary(const config::TwinCase& twin, const model::SimulationResult& 
   }
 }
 
-// Puts the finished `tmp` where `out` is, replacing an earlier result.
-void move_into_place(const fs::path& tmp, const fs::path& out) {
-  if (!fs::exists(out)) {
-    fs::rename(tmp, out);
-    return;
-  }
-  const fs::path old =
-      out.parent_path() / ("." + out.filename().string() + ".old-" + std::to_string(::getpid()));
-  fs::rename(out, old);
-  try {
-    fs::rename(tmp, out);
-  } catch (...) {
-    fs::rename(old, out);
-    throw;
-  }
-  fs::remove_all(old);
-}
-
 int run_sim(const SimArgs& args) {
   const auto start = std::chrono::steady_clock::now();
   config::TwinCase twin;
@@ -258,9 +242,10 @@ int run_sim(const SimArgs& args) {
     return 2;
   }
   if (args.t_end) {
-    if (!(std::isfinite(*args.t_end) && *args.t_end > 0)) {
+    if (!(std::isfinite(*args.t_end) && *args.t_end > 0 &&
+          *args.t_end <= config::kMaxTwinSimulatedS)) {
       std::cerr << "wavebench sim: --t-end: got '" << *args.t_end
-                << "', expected a time in seconds > 0\n";
+                << "', expected a time in seconds in (0, " << config::kMaxTwinSimulatedS << "]\n";
       return 2;
     }
     twin.solver.t_end = *args.t_end;
@@ -282,23 +267,47 @@ int run_sim(const SimArgs& args) {
       if (!args.quiet) std::cerr << "wavebench sim: speed sweep skipped for the short run\n";
     }
   }
+  if (args.t_end) {
+    try {
+      config::check_twin_run_budget(twin, "--t-end");
+    } catch (const config::ConfigError& e) {
+      std::cerr << "wavebench sim: " << e.what() << "\n";
+      return 2;
+    }
+  }
 
-  const fs::path out = fs::absolute(fs::path(args.out)).lexically_normal();
-  const fs::path tmp =
-      out.parent_path() / ("." + out.filename().string() + ".tmp-" + std::to_string(::getpid()));
+  fs::path out = fs::absolute(fs::path(args.out)).lexically_normal();
+  if (out.filename().empty()) out = out.parent_path();  // "dir/" names dir
+  if (const auto refusal = sim_output_refusal(out)) {
+    std::cerr << "wavebench sim: --out: got '" << args.out << "', expected a new folder, an "
+              << "empty one or an earlier wavebench sim output: " << *refusal << "\n";
+    return 2;
+  }
+  remove_stale_sim_temp_folders(out);
+  const fs::path tmp = sim_temp_folder(out);
+  StopSignals stop;
   try {
     ProgressLine progress(!args.quiet);
-    twin.solver.progress = [&progress](double f) { progress.update(f); };
+    twin.solver.progress = [&progress](double f) {
+      StopSignals::throw_if_requested();
+      progress.update(f);
+    };
     const model::SimulationResult result = model::simulate(twin.gear, twin.solver);
     progress.finish();
-    twin.solver.progress = nullptr;  // a sweep in the analysis simulates again, silently
+    // A sweep in the analysis simulates again, silently, but still stops on a signal.
+    twin.solver.progress = [](double) { StopSignals::throw_if_requested(); };
     if (!args.quiet) std::cerr << "analysing ...\n";
     const analysis::TwinAnalysis a =
         analysis::analyse_twin_run(twin.gear, twin.solver, result, twin.analysis);
+    StopSignals::throw_if_requested();
 
-    fs::create_directories(tmp);
+    fs::create_directories(out.parent_path());
+    fs::create_directory(tmp);
+    write_sim_marker(tmp, fs::absolute(args.config).string());
     report::write_timeseries_csv(tmp / "timeseries.csv", result.response);
+    StopSignals::throw_if_requested();
     write_plots(tmp, twin, result, a);
+    StopSignals::throw_if_requested();
     const double total_wall =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     nlohmann::json summary = analysis::summary_json(a, result);
@@ -312,12 +321,17 @@ int run_sim(const SimArgs& args) {
       json << summary.dump(2) << "\n";
       if (!json) throw std::runtime_error("cannot write summary.json");
     }
-    move_into_place(tmp, out);
+    StopSignals::throw_if_requested();
+    move_sim_output_into_place(tmp, out);
     print_summary(twin, result, a, total_wall);
     std::printf("  written: %s\n", out.c_str());
+  } catch (const StopRequested&) {
+    remove_sim_output(tmp);
+    std::cerr << "\nwavebench sim: stopped by a signal; " << out.string() << " left as it was\n";
+    stop.reraise();
   } catch (const std::exception& e) {
-    std::error_code ec;
-    fs::remove_all(tmp, ec);
+    // Also std::bad_alloc: the budgets should make it impossible, but never leave a temp folder.
+    remove_sim_output(tmp);
     std::cerr << "wavebench sim: " << e.what() << "\n";
     return 1;
   }

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <set>
 
+#include "wavebench/strict_yaml/strict_yaml.hpp"
+
 namespace wavebench::modbus {
 
 namespace {
@@ -308,11 +310,14 @@ BrakeClientConfig load_brake_config(const YAML::Node& node) {
 BrakeClientConfig load_brake_config_file(const std::filesystem::path& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path.string());
-  } catch (const YAML::Exception& e) {
-    throw BrakeConfigError("brake config: cannot read '" + path.string() + "': " + e.what());
+    root = strict_yaml::parse_strict_yaml(strict_yaml::read_config_file(path), path.string());
+  } catch (const strict_yaml::RefusedConfig& e) {
+    throw BrakeConfigError(std::string("brake config: ") + e.what());
   }
-  if (root.IsMap() && root["brake"]) return load_brake_config(root["brake"]);
+  if (root.IsMap() && root["brake"]) {
+    if (root["brake"].IsNull()) fail("brake", "", "a section of brake settings (it is empty)");
+    return load_brake_config(root["brake"]);
+  }
   return load_brake_config(root);
 }
 

@@ -86,9 +86,20 @@ std::vector<int> cluster_points(std::span<const PhasePoint> p, double tolerance,
   return labels;
 }
 
-double correlation_dimension(std::span<const PhasePoint> p) {
+double correlation_dimension(std::span<const PhasePoint> all) {
   // Grassberger-Procaccia: slope of log C(r) between the radii that hold 0.5 % and 5 % of all
   // pairs, small enough to see the local structure, large enough to have statistics.
+  // The pairs grow with the square of the points (100 000 points: 40 GB), so a long record's
+  // section is thinned evenly to kMaxPoints (8 million pairs, 64 MB).
+  constexpr std::size_t kMaxPoints = 4000;
+  std::vector<PhasePoint> thinned;
+  if (all.size() > kMaxPoints) {
+    thinned.reserve(kMaxPoints);
+    for (std::size_t k = 0; k < kMaxPoints; ++k)
+      thinned.push_back(all[k * all.size() / kMaxPoints]);
+  }
+  const std::span<const PhasePoint> p =
+      thinned.empty() ? all : std::span<const PhasePoint>(thinned);
   std::vector<double> d;
   d.reserve(p.size() * (p.size() - 1) / 2);
   for (std::size_t i = 0; i < p.size(); ++i) {

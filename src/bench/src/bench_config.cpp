@@ -5,12 +5,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <fstream>
 #include <functional>
 #include <set>
 #include <sstream>
 
 #include "wavebench/config/config_error.hpp"
+#include "wavebench/config/config_text.hpp"
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/config/units.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
@@ -85,6 +85,24 @@ std::string text(const YAML::Node& node, const std::string& key) {
   return node.Scalar();
 }
 
+// Names and serials go into run folders, the runs index and report titles: one short line.
+std::string label(const YAML::Node& node, const std::string& key) {
+  std::string v = text(node, key);
+  constexpr std::size_t kMaxLabel = 128;
+  if (v.empty() || v.size() > kMaxLabel) {
+    throw ConfigError(key, v, "a text of 1 to " + std::to_string(kMaxLabel) + " characters");
+  }
+  return v;
+}
+
+// A quantity in [lo, hi] (SI), for values whose extremes would stall or flood the bench.
+double bounded_quantity(const YAML::Node& node, Dimension dim, const std::string& key, double lo,
+                        double hi, const std::string& range) {
+  const double v = quantity(node, dim, key);
+  if (v < lo || v > hi) throw ConfigError(key, scalar_text(node), range);
+  return v;
+}
+
 void optional(const YAML::Node& section, const char* key,
               const std::function<void(const YAML::Node&)>& read) {
   if (const auto n = section[key]; n) read(n);
@@ -118,9 +136,9 @@ void parse_object(const std::string& value, const std::string& key, std::uint16_
 
 void read_top(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
   auto& d = c.description;
-  optional(root, "name", [&](const YAML::Node& n) { d.name = text(n, "name"); });
+  optional(root, "name", [&](const YAML::Node& n) { d.name = label(n, "name"); });
   optional(root, "unit_serial",
-           [&](const YAML::Node& n) { d.unit_serial = text(n, "unit_serial"); });
+           [&](const YAML::Node& n) { d.unit_serial = label(n, "unit_serial"); });
   optional(root, "rated_torque", [&](const YAML::Node& n) {
     d.rated_torque_nm = quantity(n, Dimension::kTorque, "rated_torque");
     if (d.rated_torque_nm <= 0) throw ConfigError("rated_torque", scalar_text(n), "a torque > 0");
@@ -216,7 +234,8 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
       c.drive.profile_acceleration_rad_s2 = number(v, "drive.profile_acceleration", 0, 1e9);
     });
     optional(n, "target_settle", [&](const YAML::Node& v) {
-      c.drive.target_settle_s = quantity(v, Dimension::kTime, "drive.target_settle");
+      c.drive.target_settle_s = bounded_quantity(v, Dimension::kTime, "drive.target_settle", 0, 60,
+                                                 "a time in [0, 60 s]");
     });
   });
   optional(root, "encoder", [&](const YAML::Node& n) {
@@ -229,7 +248,8 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
       c.encoder.turns = static_cast<std::uint32_t>(integer(v, "encoder.turns", 1, 1L << 20));
     });
     optional(n, "noise", [&](const YAML::Node& v) {
-      c.encoder.noise_rad = quantity(v, Dimension::kAngle, "encoder.noise");
+      c.encoder.noise_rad = bounded_quantity(v, Dimension::kAngle, "encoder.noise", 0, M_PI / 180,
+                                             "an angle in [0, 1 deg]");
     });
   });
   optional(root, "torque_sensor", [&](const YAML::Node& n) {
@@ -251,10 +271,12 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
         throw ConfigError("torque_sensor.scale", "0", "a non-zero N*m per raw unit");
     });
     optional(n, "offset", [&](const YAML::Node& v) {
-      s.offset = quantity(v, Dimension::kTorque, "torque_sensor.offset");
+      s.offset = bounded_quantity(v, Dimension::kTorque, "torque_sensor.offset", -1e6, 1e6,
+                                  "a torque in [-1e6, 1e6] N*m");
     });
     optional(n, "noise", [&](const YAML::Node& v) {
-      c.torque_sensor.noise_nm = quantity(v, Dimension::kTorque, "torque_sensor.noise");
+      c.torque_sensor.noise_nm = bounded_quantity(v, Dimension::kTorque, "torque_sensor.noise", 0,
+                                                  1e4, "a torque in [0, 1e4] N*m");
     });
   });
 }
@@ -264,9 +286,17 @@ void read_safety(const YAML::Node& n, SafetyLimits& l) {
              {"max_input_speed", "max_brake_current", "max_brake_torque", "max_measured_torque",
               "max_following_error", "max_coil_temperature", "max_te_excursion",
               "heartbeat_timeout", "modbus_link_timeout"});
+  // An absent key switches its limit off; a written one must be a limit. A negative or zero
+  // value used to mean "off" too, so a sign typo silently disarmed the bench.
   auto read = [&](const char* key, Dimension dim, double& out) {
-    optional(n, key,
-             [&](const YAML::Node& v) { out = quantity(v, dim, std::string("safety.") + key); });
+    optional(n, key, [&](const YAML::Node& v) {
+      const std::string name = std::string("safety.") + key;
+      out = quantity(v, dim, name);
+      if (!(out > 0)) {
+        throw ConfigError(name, scalar_text(v),
+                          "a limit > 0 (leave the key out to switch this limit off)");
+      }
+    });
   };
   read("max_input_speed", Dimension::kAngularSpeed, l.max_input_speed_rad_s);
   read("max_brake_current", Dimension::kCurrent, l.max_brake_current_a);
@@ -295,13 +325,16 @@ void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::
     });
     optional(g, "te_phase_shift", [&](const YAML::Node& v) {
       s.variation.te_phase_shift_rad =
-          quantity(v, Dimension::kAngle, "simulated.true_gear.te_phase_shift");
+          bounded_quantity(v, Dimension::kAngle, "simulated.true_gear.te_phase_shift", -2 * M_PI,
+                           2 * M_PI, "an angle in [-1 rev, 1 rev]");
     });
     optional(g, "stiffness_scale", [&](const YAML::Node& v) {
       s.variation.stiffness_scale = number(v, "simulated.true_gear.stiffness_scale", 1e-3, 1e3);
     });
     optional(g, "backlash", [&](const YAML::Node& v) {
-      s.variation.backlash_rad = quantity(v, Dimension::kAngle, "simulated.true_gear.backlash");
+      s.variation.backlash_rad =
+          bounded_quantity(v, Dimension::kAngle, "simulated.true_gear.backlash", 0, M_PI / 180,
+                           "an angle in [0, 1 deg]");
     });
   });
   optional(n, "simbench", [&](const YAML::Node& v) {
@@ -332,13 +365,7 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
       (std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml").string();
   c.brake.link.endpoint.port = 1502;
   try {
-    YAML::Node root;
-    try {
-      root = YAML::Load(yaml_text);
-    } catch (const YAML::Exception& e) {
-      throw ConfigError("(file)", e.what(), "valid YAML");
-    }
-    if (!root || root.IsNull()) root = YAML::Node(YAML::NodeType::Map);
+    const YAML::Node root = config::parse_config_yaml(yaml_text, source);
     check_keys(root, "",
                {"name", "unit_serial", "rated_torque", "gear", "sync_period", "clock", "twin_case",
                 "can", "drive", "encoder", "torque_sensor", "brake", "safety", "simulated"});
@@ -385,11 +412,7 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
 }
 
 BenchConfig load_bench_config(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("(file)", path.string(), "a readable bench config file");
-  std::ostringstream buffer;
-  buffer << in.rdbuf();
-  return parse_bench_config(buffer.str(), path.parent_path(), path.string());
+  return parse_bench_config(config::read_config_text(path), path.parent_path(), path.string());
 }
 
 BenchConfig default_simulated_bench_config() {

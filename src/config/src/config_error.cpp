@@ -10,7 +10,10 @@ std::string compose(const std::string& key, const std::string& value, const std:
   std::string msg;
   if (!source.empty()) msg += source + ": ";
   msg += key.empty() ? std::string("(document)") : key;
-  msg += ": got '" + value + "', expected " + expected;
+  // A value quoted in a message stays readable: a whole list or a long line would bury the key.
+  constexpr std::size_t kMaxQuoted = 200;
+  msg += ": got '" + (value.size() > kMaxQuoted ? value.substr(0, kMaxQuoted) + "..." : value) +
+         "', expected " + expected;
   return msg;
 }
 

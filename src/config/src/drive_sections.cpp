@@ -10,6 +10,7 @@ namespace {
 model::KinematicInput parse_kinematic(YamlSection& s) {
   model::KinematicInput k;
   k.speed = s.quantity_or("speed", Dimension::kAngularSpeed, 0.0);
+  s.require_within("speed", k.speed, -kMaxSpeedRadS, kMaxSpeedRadS, "a speed [rad/s]");
   k.ramp_time = s.non_negative_quantity_or("ramp_time", Dimension::kTime, 0.0);
   if (auto trace = s.optional_section("trace")) {
     k.trace_t = trace->quantity_list("t", Dimension::kTime);
@@ -55,6 +56,8 @@ model::ServoDriveInput parse_servo(YamlSection& s) {
   d.torque_limit = s.non_negative_quantity_or("torque_limit", Dimension::kTorque, 0.0);
   d.speed_limit = s.non_negative_quantity_or("speed_limit", Dimension::kAngularSpeed, 0.0);
   d.speed_setpoint = s.quantity_or("speed_setpoint", Dimension::kAngularSpeed, 0.0);
+  s.require_within("speed_setpoint", d.speed_setpoint, -kMaxSpeedRadS, kMaxSpeedRadS,
+                   "a speed [rad/s]");
   d.position_setpoint = s.quantity_or("position_setpoint", Dimension::kAngle, 0.0);
   if (d.position_control && !(d.position_gain > 0)) {
     s.fail("position_gain", s.value_text("position_gain"),
@@ -116,6 +119,8 @@ void parse_input_section(YamlSection& s, model::GearParams& gear) {
   }
   // The reference motion of the deviation coordinates; an explicit value wins.
   gear.nominal_input_speed = s.quantity_or("nominal_speed", Dimension::kAngularSpeed, nominal);
+  s.require_within("nominal_speed", gear.nominal_input_speed, -kMaxSpeedRadS, kMaxSpeedRadS,
+                   "a speed [rad/s]");
   s.finish();
 }
 

@@ -28,7 +28,8 @@ void parse_gear_section(YamlSection& s, model::GearParams& gear) {
   if (has_flex) {
     g.z_flex = s.integer("z_flex");
     g.z_circ = s.integer("z_circ");
-    if (g.z_flex <= 0) s.fail("z_flex", s.value_text("z_flex"), "a tooth count > 0");
+    s.require_within("z_flex", g.z_flex, 1, kMaxOrder, "a tooth count");
+    s.require_within("z_circ", g.z_circ, 1, kMaxOrder, "a tooth count");
     if (g.z_circ <= g.z_flex) {
       s.fail("z_circ", s.value_text("z_circ"),
              "more teeth than z_flex = " + std::to_string(g.z_flex) +
@@ -39,6 +40,7 @@ void parse_gear_section(YamlSection& s, model::GearParams& gear) {
       has_flex ? static_cast<double>(g.z_flex) / static_cast<double>(g.z_circ - g.z_flex) : 0.0;
   if (s.has("ratio")) {
     g.ratio = s.positive_quantity("ratio", Dimension::kDimensionless);
+    s.require_within("ratio", g.ratio, 1e-3, 1e5, "a reduction ratio");
     if (has_flex && std::abs(g.ratio - teeth_ratio) > 1e-6 * teeth_ratio) {
       s.fail("ratio", s.value_text("ratio"),
              "z_flex/(z_circ - z_flex) = " + format_number(teeth_ratio) +
@@ -52,14 +54,17 @@ void parse_gear_section(YamlSection& s, model::GearParams& gear) {
   }
 
   g.wave_number = s.integer_or("wave_number", has_flex ? g.z_circ - g.z_flex : 2);
-  if (g.wave_number < 1) s.fail("wave_number", s.value_text("wave_number"), "an integer >= 1");
+  s.require_within("wave_number", g.wave_number, 1, 100, "a wave number");
   g.direction_sign = s.integer_or("direction", 1);
   if (g.direction_sign != 1 && g.direction_sign != -1) {
     s.fail("direction", s.value_text("direction"), "+1 or -1");
   }
 
+  // A vanishing inertia makes the gear infinitely stiff for the solver: it never finishes.
   gear.inertia_input = s.positive_quantity("inertia_input", Dimension::kInertia);
+  s.require_within("inertia_input", gear.inertia_input, 1e-9, 1e6, "an inertia [kg*m^2]");
   gear.inertia_output = s.positive_quantity("inertia_output", Dimension::kInertia);
+  s.require_within("inertia_output", gear.inertia_output, 1e-9, 1e6, "an inertia [kg*m^2]");
   gear.viscous_input = s.non_negative_quantity_or("viscous_input", Dimension::kDamping, 0.0);
   gear.viscous_output = s.non_negative_quantity_or("viscous_output", Dimension::kDamping, 0.0);
   s.finish();

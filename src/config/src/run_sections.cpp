@@ -11,9 +11,20 @@ void parse_solver_section(YamlSection& s, model::SimulationOptions& solver) {
   solver.method = method == "rk4"          ? model::SolverMethod::kRk4
                   : method == "rosenbrock" ? model::SolverMethod::kRosenbrock4
                                            : model::SolverMethod::kDormandPrince45;
-  if (s.has("rtol")) solver.rtol = s.positive_quantity("rtol", Dimension::kDimensionless);
-  if (s.has("atol")) solver.atol = s.positive_quantity("atol", Dimension::kDimensionless);
-  if (s.has("t_end")) solver.t_end = s.positive_quantity("t_end", Dimension::kTime);
+  // Tolerances below these ask for more digits than a double has: the step would shrink
+  // towards zero and the run would never end.
+  if (s.has("rtol")) {
+    solver.rtol = s.positive_quantity("rtol", Dimension::kDimensionless);
+    s.require_within("rtol", solver.rtol, 1e-12, 0.5, "a relative tolerance");
+  }
+  if (s.has("atol")) {
+    solver.atol = s.positive_quantity("atol", Dimension::kDimensionless);
+    s.require_within("atol", solver.atol, 1e-14, 1.0, "an absolute tolerance");
+  }
+  if (s.has("t_end")) {
+    solver.t_end = s.positive_quantity("t_end", Dimension::kTime);
+    s.require_within("t_end", solver.t_end, 1e-6, kMaxTwinSimulatedS, "a simulated time [s]");
+  }
   solver.transient = s.non_negative_quantity_or("transient", Dimension::kTime, solver.transient);
   if (!(solver.transient < solver.t_end)) {
     s.fail("transient", s.value_text("transient"),
@@ -21,11 +32,17 @@ void parse_solver_section(YamlSection& s, model::SimulationOptions& solver) {
   }
   if (s.has("sample_rate")) {
     solver.sample_rate = s.positive_quantity("sample_rate", Dimension::kFrequency);
+    s.require_within("sample_rate", solver.sample_rate, 1.0, 10e6, "an output rate [Hz]");
   }
   if (s.has("fixed_step")) {
     solver.fixed_step = s.positive_quantity("fixed_step", Dimension::kTime);
+    s.require_within("fixed_step", solver.fixed_step, 1e-8, 1.0, "a step [s]");
   }
   solver.max_step = s.non_negative_quantity_or("max_step", Dimension::kTime, solver.max_step);
+  if (solver.max_step > 0) {
+    s.require_within("max_step", solver.max_step, 1e-8, kMaxTwinSimulatedS,
+                     "0 (no limit) or a step [s]");
+  }
   solver.locate_events = s.boolean_or("locate_events", solver.locate_events);
   s.finish();
 }
@@ -44,7 +61,7 @@ void parse_spectrum(YamlSection& s, analysis::SpectrumOptions& o) {
   o.max_frequency_hz =
       s.non_negative_quantity_or("max_frequency", Dimension::kFrequency, o.max_frequency_hz);
   o.max_peaks = s.integer_or("max_peaks", o.max_peaks);
-  if (o.max_peaks < 1) s.fail("max_peaks", s.value_text("max_peaks"), "an integer >= 1");
+  s.require_within("max_peaks", o.max_peaks, 1, 1000, "a number of peaks");
   o.min_relative_amplitude = s.non_negative_quantity_or(
       "min_relative_amplitude", Dimension::kDimensionless, o.min_relative_amplitude);
   s.finish();
@@ -55,9 +72,13 @@ void parse_sweep(YamlSection& s, analysis::SweepOptions& o) {
   o.from_speed = s.positive_quantity("from", Dimension::kAngularSpeed);
   o.to_speed = s.positive_quantity("to", Dimension::kAngularSpeed);
   o.steps = s.integer("steps");
-  if (o.steps < 2) s.fail("steps", s.value_text("steps"), "an integer >= 2");
+  s.require_within("steps", o.steps, 2, 1000, "a number of sweep speeds");
+  s.require_within("from", o.from_speed, 0, kMaxSpeedRadS, "a speed [rad/s]");
+  s.require_within("to", o.to_speed, 0, kMaxSpeedRadS, "a speed [rad/s]");
   o.settle_time = s.positive_quantity("settle_time", Dimension::kTime);
+  s.require_within("settle_time", o.settle_time, 0, kMaxTwinSimulatedS, "a time [s]");
   o.record_time = s.positive_quantity("record_time", Dimension::kTime);
+  s.require_within("record_time", o.record_time, 0, kMaxTwinSimulatedS, "a time [s]");
   o.jump_threshold =
       s.non_negative_quantity_or("jump_threshold", Dimension::kDimensionless, o.jump_threshold);
   s.finish();
@@ -71,9 +92,8 @@ void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis)
   if (auto p = s.optional_section("poincare")) {
     analysis.poincare.excitation_source = p->text_or("excitation_source", "");
     analysis.poincare.max_clusters = p->integer_or("max_clusters", analysis.poincare.max_clusters);
-    if (analysis.poincare.max_clusters < 1) {
-      p->fail("max_clusters", p->value_text("max_clusters"), "an integer >= 1");
-    }
+    p->require_within("max_clusters", analysis.poincare.max_clusters, 1, 1000,
+                      "a number of clusters");
     p->finish();
   }
   if (auto sw = s.optional_section("sweep")) parse_sweep(*sw, analysis.sweep);
@@ -84,10 +104,9 @@ void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis)
     if (!(o.relative_step > 0)) {
       se->fail("relative_step", se->value_text("relative_step"), "a fraction > 0");
     }
+    se->require_within("relative_step", o.relative_step, 0, 1, "a fraction");
     o.monte_carlo_runs = se->integer_or("monte_carlo_runs", o.monte_carlo_runs);
-    if (o.monte_carlo_runs < 0) {
-      se->fail("monte_carlo_runs", se->value_text("monte_carlo_runs"), "an integer >= 0");
-    }
+    se->require_within("monte_carlo_runs", o.monte_carlo_runs, 0, 100000, "a number of runs");
     const int seed = se->integer_or("seed", static_cast<int>(o.seed));
     if (seed < 0) se->fail("seed", se->value_text("seed"), "an integer >= 0");
     o.seed = static_cast<unsigned>(seed);

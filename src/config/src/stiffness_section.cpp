@@ -15,6 +15,8 @@ std::vector<model::StiffnessHarmonic> parse_harmonics(YamlSection& s, const std:
     harmonic.amplitude = h.quantity("amplitude", amplitude_dimension);
     harmonic.order_input = h.quantity_or("order_input", Dimension::kDimensionless, 0.0);
     harmonic.order_output = h.quantity_or("order_output", Dimension::kDimensionless, 0.0);
+    h.require_within("order_input", harmonic.order_input, -kMaxOrder, kMaxOrder, "an order");
+    h.require_within("order_output", harmonic.order_output, -kMaxOrder, kMaxOrder, "an order");
     if (harmonic.order_input == 0 && harmonic.order_output == 0) {
       h.fail("order_input", h.value_text("order_input"),
              "a non-zero order_input or order_output (an order-0 term is part of the mean)");

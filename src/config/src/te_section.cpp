@@ -51,6 +51,7 @@ model::TeTerm parse_term(YamlSection& s, const model::GearGeometry& geometry) {
   model::TeTerm term;
   term.source = s.text("source");
   term.amplitude_rad = s.quantity("amplitude", Dimension::kAngle);
+  s.require_within("amplitude", term.amplitude_rad, -0.1, 0.1, "a TE amplitude [rad]");
   term.phase_rad = s.quantity_or("phase", Dimension::kAngle, 0.0);
   const std::string family =
       s.choice_or("family",
@@ -71,6 +72,8 @@ model::TeTerm parse_term(YamlSection& s, const model::GearGeometry& geometry) {
     }
     term.order_input = s.quantity_or("order_input", Dimension::kDimensionless, 0.0);
     term.order_output = s.quantity_or("order_output", Dimension::kDimensionless, 0.0);
+    s.require_within("order_input", term.order_input, -kMaxOrder, kMaxOrder, "an order");
+    s.require_within("order_output", term.order_output, -kMaxOrder, kMaxOrder, "an order");
     return term;
   }
   const auto [a, b] = family_orders(term.family, geometry);

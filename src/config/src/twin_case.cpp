@@ -1,10 +1,8 @@
 #include "wavebench/config/twin_case.hpp"
 
-#include <fstream>
-#include <sstream>
-
 #include "twin_sections.hpp"
 #include "wavebench/config/config_error.hpp"
+#include "wavebench/config/config_text.hpp"
 
 namespace wavebench::config {
 namespace {
@@ -35,15 +33,11 @@ TwinCase parse_document(const YAML::Node& root) {
 }  // namespace
 
 TwinCase parse_twin_case(const std::string& yaml_text, const std::string& source) {
-  YAML::Node root;
+  const YAML::Node root = parse_config_yaml(yaml_text, source);
   try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw ConfigError("", "line " + std::to_string(e.mark.line + 1) + ": " + e.msg,
-                      "well-formed YAML", source);
-  }
-  try {
-    return parse_document(root);
+    TwinCase twin = parse_document(root);
+    check_twin_run_budget(twin);
+    return twin;
   } catch (const ConfigError& e) {
     throw e.with_source(source);
   } catch (const YAML::Exception& e) {
@@ -52,11 +46,7 @@ TwinCase parse_twin_case(const std::string& yaml_text, const std::string& source
 }
 
 TwinCase load_twin_case(const std::filesystem::path& path) {
-  std::ifstream in(path);
-  if (!in) throw ConfigError("", path.string(), "a readable twin-case file", path.string());
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_twin_case(text.str(), path.string());
+  return parse_twin_case(read_config_text(path), path.string());
 }
 
 }  // namespace wavebench::config

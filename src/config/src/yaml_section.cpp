@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <charconv>
 #include <cmath>
+#include <sstream>
 #include <utility>
 
 #include "wavebench/config/config_error.hpp"
@@ -84,6 +85,14 @@ void YamlSection::fail(const std::string& key, const std::string& value,
   throw ConfigError(key_path(key), value, expected);
 }
 
+void YamlSection::require_within(const std::string& key, double value, double lo, double hi,
+                                 const std::string& expected) const {
+  if (value >= lo && value <= hi) return;
+  std::ostringstream range;
+  range << expected << " in [" << lo << ", " << hi << "]";
+  fail(key, value_text(key), range.str());
+}
+
 std::string YamlSection::value_text(const std::string& key) const {
   return node_text(node_[key]);
 }
@@ -141,6 +150,10 @@ std::vector<double> YamlSection::quantity_list(const std::string& key, Dimension
     fail(key, "", "a list of values, each " + describe(dimension) + " (the key is required)");
   }
   if (!n.IsSequence()) fail(key, node_text(n), "a list of values, each " + describe(dimension));
+  if (n.size() > kMaxListItems) {
+    fail(key, std::to_string(n.size()) + " values",
+         "a list of at most " + std::to_string(kMaxListItems) + " values");
+  }
   std::vector<double> out;
   out.reserve(n.size());
   for (std::size_t i = 0; i < n.size(); ++i) {
@@ -232,6 +245,10 @@ std::vector<YamlSection> YamlSection::section_list(const std::string& key) {
   std::vector<YamlSection> out;
   if (!n.IsDefined() || n.IsNull()) return out;
   if (!n.IsSequence()) fail(key, node_text(n), "a list of sections");
+  if (n.size() > kMaxListItems) {
+    fail(key, std::to_string(n.size()) + " items",
+         "a list of at most " + std::to_string(kMaxListItems) + " sections");
+  }
   for (std::size_t i = 0; i < n.size(); ++i) {
     const std::string item = key + "[" + std::to_string(i) + "]";
     if (!n[i].IsMap()) fail(item, node_text(n[i]), "a section (a mapping of keys to values)");
@@ -252,6 +269,7 @@ model::Sinusoid YamlSection::sinusoid_or(const std::string& key, Dimension dimen
   s.offset = sub.quantity_or("offset", dimension, 0.0);
   s.amplitude = sub.quantity_or("amplitude", dimension, 0.0);
   s.frequency_hz = sub.non_negative_quantity_or("frequency", Dimension::kFrequency, 0.0);
+  sub.require_within("frequency", s.frequency_hz, 0, kMaxSinusoidHz, "a frequency [Hz]");
   s.phase_rad = sub.quantity_or("phase", Dimension::kAngle, 0.0);
   sub.finish();
   return s;

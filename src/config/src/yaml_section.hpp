@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cstddef>
 #include <initializer_list>
 #include <optional>
 #include <set>
@@ -53,6 +54,10 @@ class YamlSection {
 
   [[noreturn]] void fail(const std::string& key, const std::string& value,
                          const std::string& expected) const;
+  // Refuses `value` (read from `key`) outside [lo, hi]: the bounds that keep a run's memory
+  // and time finite. `expected` says what the key is, e.g. "an order".
+  void require_within(const std::string& key, double value, double lo, double hi,
+                      const std::string& expected) const;
   std::string value_text(const std::string& key) const;
 
  private:
@@ -62,6 +67,16 @@ class YamlSection {
   std::set<std::string> used_;           // keys read
   mutable std::set<std::string> known_;  // keys the schema asked for, present or not (for hints)
 };
+
+// Physical bounds that keep a run finite: no gear turns its input faster (about 95 000 rpm),
+// no excitation order or tooth count is larger, no sinusoid in a case is faster.
+inline constexpr double kMaxSpeedRadS = 1e4;
+inline constexpr double kMaxOrder = 1e4;
+inline constexpr double kMaxSinusoidHz = 1e5;
+
+// Lists longer than this are refused: no shipped case has more than a few dozen items, and a
+// list's length multiplies the work of every step.
+inline constexpr std::size_t kMaxListItems = 10000;
 
 // The mapping at the top of a document.
 YamlSection document_section(const YAML::Node& root);

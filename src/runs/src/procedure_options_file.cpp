@@ -2,9 +2,9 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
-#include <sstream>
 #include <stdexcept>
+
+#include "wavebench/strict_yaml/strict_yaml.hpp"
 
 namespace wavebench::runs {
 
@@ -54,11 +54,10 @@ nlohmann::json procedure_options_from_yaml(const std::string& yaml_text,
                                            const std::string& source) {
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(source + ": not YAML (" + e.what() + ")");
+    root = strict_yaml::parse_strict_yaml(yaml_text, source);
+  } catch (const strict_yaml::RefusedConfig& e) {
+    throw std::invalid_argument(e.what());
   }
-  if (root.IsNull()) return nlohmann::json::object();
   if (!root.IsMap()) {
     throw std::invalid_argument(source + ": got a " +
                                 (root.IsSequence() ? std::string("list") : "single value") +
@@ -68,11 +67,13 @@ nlohmann::json procedure_options_from_yaml(const std::string& yaml_text,
 }
 
 nlohmann::json load_procedure_options(const std::filesystem::path& file) {
-  std::ifstream in(file);
-  if (!in) throw std::invalid_argument(file.string() + ": cannot be read");
-  std::stringstream text;
-  text << in.rdbuf();
-  return procedure_options_from_yaml(text.str(), file.string());
+  std::string text;
+  try {
+    text = strict_yaml::read_config_file(file);
+  } catch (const strict_yaml::RefusedConfig& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return procedure_options_from_yaml(text, file.string());
 }
 
 }  // namespace wavebench::runs

@@ -2,11 +2,12 @@
 
 #include <yaml-cpp/yaml.h>
 
-#include <fstream>
+#include <initializer_list>
 #include <limits>
 #include <numbers>
-#include <sstream>
 #include <stdexcept>
+
+#include "wavebench/strict_yaml/strict_yaml.hpp"
 
 namespace wavebench::simdevices {
 namespace {
@@ -19,6 +20,22 @@ std::string describe(const YAML::Node& node) {
 [[noreturn]] void bad(const std::string& key, const YAML::Node& node, const std::string& expected) {
   throw std::invalid_argument("simbench config: " + key + " = " + describe(node) + " (expected " +
                               expected + ")");
+}
+
+// Unknown keys are refused: a misspelt key would otherwise leave its default in place silently.
+void check_keys(const YAML::Node& node, const std::string& section,
+                std::initializer_list<const char*> known) {
+  if (!node.IsMap()) bad(section, node, "a map");
+  for (const auto& kv : node) {
+    const std::string key = kv.first.Scalar();
+    bool found = false;
+    std::string list;
+    for (const char* k : known) {
+      found = found || key == k;
+      list += (list.empty() ? "" : ", ") + std::string(k);
+    }
+    if (!found) bad(section + "." + key, kv.second, "one of the known keys: " + list);
+  }
 }
 
 template <typename T>
@@ -56,14 +73,19 @@ void read_double(const YAML::Node& parent, const std::string& section, const cha
 
 void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
   const std::string s = "simbench.drive";
+  check_keys(n, s,
+             {"node_id", "counts_per_revolution", "rated_torque_nm", "max_torque_permille",
+              "max_motor_speed_rpm", "position_gain", "velocity_gain", "velocity_integral_time_s",
+              "control_period_us", "quick_stop_option", "following_error_window",
+              "following_error_timeout_ms", "serial_number"});
   read_integer(n, s, "node_id", d.node_id, 1, 127);
   read_integer(n, s, "counts_per_revolution", d.counts_per_revolution, 4, 1LL << 30);
-  read_double(n, s, "rated_torque_nm", d.rated_torque_nm, 1e-3);
+  read_double(n, s, "rated_torque_nm", d.rated_torque_nm, 1e-3, 1e4);
   read_integer(n, s, "max_torque_permille", d.max_torque_permille, 1, 65535);
   read_integer(n, s, "max_motor_speed_rpm", d.max_motor_speed_rpm, 1, 100000);
-  read_double(n, s, "position_gain", d.position_gain, 0);
-  read_double(n, s, "velocity_gain", d.velocity_gain, 0);
-  read_double(n, s, "velocity_integral_time_s", d.velocity_integral_time, 0);
+  read_double(n, s, "position_gain", d.position_gain, 0, 1e6);
+  read_double(n, s, "velocity_gain", d.velocity_gain, 0, 1e6);
+  read_double(n, s, "velocity_integral_time_s", d.velocity_integral_time, 0, 1e3);
   double period_us = d.control_period * 1e6;
   read_double(n, s, "control_period_us", period_us, 10, 10000);
   d.control_period = period_us * 1e-6;
@@ -75,11 +97,13 @@ void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
 
 void read_encoder(const YAML::Node& n, EncoderConfig& e) {
   const std::string s = "simbench.encoder";
+  check_keys(n, s,
+             {"node_id", "resolution", "revolutions", "noise_arcsec", "seed", "serial_number"});
   read_integer(n, s, "node_id", e.node_id, 1, 127);
   read_integer(n, s, "resolution", e.single_turn_resolution, 2, 1LL << 31);
   read_integer(n, s, "revolutions", e.revolutions, 1, 65535);
   double arcsec = e.noise_rad * 180 * 3600 / std::numbers::pi;
-  read_double(n, s, "noise_arcsec", arcsec, 0);
+  read_double(n, s, "noise_arcsec", arcsec, 0, 3600);
   e.noise_rad = arcsec * std::numbers::pi / (180 * 3600);
   read_integer(n, s, "seed", e.seed, 0, std::numeric_limits<long long>::max());
   read_integer(n, s, "serial_number", e.identity.serial_number, 0, 0xFFFFFFFFLL);
@@ -87,6 +111,7 @@ void read_encoder(const YAML::Node& n, EncoderConfig& e) {
 
 void read_torque_sensor(const YAML::Node& n, TorqueSensorConfig& t) {
   const std::string s = "simbench.torque_sensor";
+  check_keys(n, s, {"node_id", "object", "type", "scale", "noise_nm", "offset_nm", "seed"});
   read_integer(n, s, "node_id", t.node_id, 1, 127);
   if (const YAML::Node o = n["object"]) {
     // "0x6130:1" or "0x6130" (sub-index 0)
@@ -115,9 +140,9 @@ void read_torque_sensor(const YAML::Node& n, TorqueSensorConfig& t) {
       bad(s + ".type", ty, "i16, i32 or f32");
     }
   }
-  read_double(n, s, "scale", t.scale_nm_per_unit, 1e-12);
-  read_double(n, s, "noise_nm", t.noise_nm, 0);
-  read_double(n, s, "offset_nm", t.offset_nm, -std::numeric_limits<double>::max());
+  read_double(n, s, "scale", t.scale_nm_per_unit, 1e-12, 1e6);
+  read_double(n, s, "noise_nm", t.noise_nm, 0, 1e4);
+  read_double(n, s, "offset_nm", t.offset_nm, -1e6, 1e6);
   read_integer(n, s, "seed", t.seed, 0, std::numeric_limits<long long>::max());
 }
 
@@ -132,15 +157,23 @@ DataType parse_process_value_type(const std::string& text) {
 
 SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
                                                   SimulatedBenchConfig base) {
+  return parse_simulated_bench_config(yaml_text, "simbench config", std::move(base));
+}
+
+SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
+                                                  const std::string& source,
+                                                  SimulatedBenchConfig base) {
   YAML::Node root;
   try {
-    root = YAML::Load(yaml_text);
-  } catch (const YAML::Exception& e) {
-    throw std::invalid_argument(std::string("simbench config: not valid YAML: ") + e.what());
+    root = strict_yaml::parse_strict_yaml(yaml_text, source);
+  } catch (const strict_yaml::RefusedConfig& e) {
+    throw std::invalid_argument(e.what());
   }
+  if (!root.IsMap()) bad("(document)", root, "a map with a simbench section");
   const YAML::Node sb = root["simbench"];
   if (!sb) return base;
-  if (!sb.IsMap()) bad("simbench", sb, "a map");
+  check_keys(sb, "simbench",
+             {"clock", "sync_period_us", "brake_torque_nm", "drive", "encoder", "torque_sensor"});
   if (const YAML::Node c = sb["clock"]) {
     const std::string v = c.IsScalar() ? c.Scalar() : "";
     if (v == "realtime") {
@@ -156,7 +189,7 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
   double sync_us = base.sync_period * 1e6;
   read_double(sb, "simbench", "sync_period_us", sync_us, 10, 1e6);
   base.sync_period = sync_us * 1e-6;
-  read_double(sb, "simbench", "brake_torque_nm", base.brake_torque, 0);
+  read_double(sb, "simbench", "brake_torque_nm", base.brake_torque, 0, 1e6);
   if (const YAML::Node d = sb["drive"]) read_drive(d, base.drive);
   if (const YAML::Node e = sb["encoder"]) read_encoder(e, base.encoder);
   if (const YAML::Node t = sb["torque_sensor"]) read_torque_sensor(t, base.torque_sensor);
@@ -171,11 +204,13 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
 
 SimulatedBenchConfig load_simulated_bench_config(const std::filesystem::path& path,
                                                  SimulatedBenchConfig base) {
-  std::ifstream in(path);
-  if (!in) throw std::invalid_argument("simbench config: cannot read '" + path.string() + "'");
-  std::ostringstream text;
-  text << in.rdbuf();
-  return parse_simulated_bench_config(text.str(), std::move(base));
+  std::string text;
+  try {
+    text = strict_yaml::read_config_file(path);
+  } catch (const strict_yaml::RefusedConfig& e) {
+    throw std::invalid_argument(e.what());
+  }
+  return parse_simulated_bench_config(text, path.string(), std::move(base));
 }
 
 }  // namespace wavebench::simdevices

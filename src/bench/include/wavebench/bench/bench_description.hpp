@@ -8,7 +8,9 @@
 
 namespace wavebench::bench {
 
-struct SafetyLimits {  // bench.md §7; a value <= 0 switches that limit off
+// bench.md §7. 0 (the default: the key absent from the bench config) switches that limit off;
+// the config refuses a written value <= 0, so a sign typo cannot disarm a limit.
+struct SafetyLimits {
   double max_input_speed_rad_s = 0;
   double max_brake_current_a = 0;
   double max_brake_torque_nm = 0;

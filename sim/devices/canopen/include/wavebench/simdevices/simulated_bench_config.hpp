@@ -23,9 +23,15 @@
 
 namespace wavebench::simdevices {
 
-// Throws std::invalid_argument naming the key, the value and what was expected.
+// Throws std::invalid_argument naming the key, the value and what was expected; unknown keys
+// inside `simbench:` and what drivers/strict_yaml refuses (empty, not UTF-8, duplicate keys)
+// are errors too.
 SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
                                                   SimulatedBenchConfig base = {});
+// The same with `source` (a file name) in the messages of the text checks.
+SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
+                                                  const std::string& source,
+                                                  SimulatedBenchConfig base);
 SimulatedBenchConfig load_simulated_bench_config(const std::filesystem::path& path,
                                                  SimulatedBenchConfig base = {});
 
