@@ -13,13 +13,26 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" \
   -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
   -DWAVEBENCH_WERROR=OFF >/dev/null
-targets=(fuzz_can_frames fuzz_sdo_client)
+targets=(fuzz_can_frames fuzz_sdo_client fuzz_twin_config fuzz_bench_config
+  fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
 status=0
 for t in "${targets[@]}"; do
   corpus="$build/corpus/$t"
   mkdir -p "$corpus"
+  # Config fuzzers start from the shipped configs, copied fresh (never committed as corpora).
+  case "$t" in
+    fuzz_twin_config) cp -n "$root"/configs/twin/*.yaml "$corpus/" ;;
+    fuzz_bench_config) cp -n "$root"/configs/benches/*.yaml "$corpus/" ;;
+    fuzz_simbench_config) # the example of simulated_bench_config.hpp
+      sed -n 's|^//   ||; s|^//$||; /^simbench:/,/^$/p' \
+        "$root"/sim/devices/canopen/include/wavebench/simdevices/simulated_bench_config.hpp \
+        >"$corpus/example.yaml" ;;
+    fuzz_procedure_options) cp -n "$root"/configs/procedures/*.yaml "$corpus/" ;;
+    fuzz_brake_config) cp -n "$root"/configs/bench/*.yaml "$corpus/" ;;
+    fuzz_http_api) bash "$root"/fuzz/http_seeds.sh "$corpus" ;;
+  esac
   echo "== $t for ${seconds}s"
   # -timeout: any single input taking over 10 s counts as a hang.
   if ! "$build/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
