@@ -38,11 +38,24 @@ struct Sim {
 using testing::Stats;
 using testing::stats;
 
+// The run request check refuses runs by their estimated bench time and disk use (issue #8):
+// with default options the estimate must be close to what the procedure took.
+void expect_estimate_close(const char* procedure, const RunPlan& plan, double bench_time_s) {
+  const double ratio = plan.bench_time_s / bench_time_s;
+  std::printf("%s: estimated %.1f s of bench time, took %.1f s (x%.2f)\n", procedure,
+              plan.bench_time_s, bench_time_s, ratio);
+  EXPECT_GE(ratio, 0.5) << procedure;
+  EXPECT_LE(ratio, 2.0) << procedure;
+}
+
 TEST(SimulatedBenchAcceptance, StaticTeEveryDirectionAndLoadWithinATenthOfAnArcminOfTheTruth) {
   Sim sim;
   ASSERT_NE(sim.access, nullptr);
   const auto gear = sim.access->true_gear();
-  const auto out = StaticTeProcedure(StaticTeOptions{}).run(*sim.bench);  // 24 positions, 0 and 60
+  const StaticTeProcedure procedure{StaticTeOptions{}};  // 24 positions, 0 and 60
+  const double t0 = sim.bench->now();
+  const auto out = procedure.run(*sim.bench);
+  expect_estimate_close("static", procedure.plan(sim.bench->description()), sim.bench->now() - t0);
   ASSERT_EQ(out.passes.size(), 4u);
   EXPECT_EQ(out.settle_timeouts, 0);
   const auto& sense = sim.bench->description().sense;
@@ -73,7 +86,10 @@ TEST(SimulatedBenchAcceptance, LostMotionWithinTwoTenthsOfAnArcminAndStiffnessWi
   Sim sim;
   const auto gear = sim.access->true_gear();
   LostMotionOptions o;
+  const double t0 = sim.bench->now();
   const auto out = LostMotionProcedure(o).run(*sim.bench);
+  expect_estimate_close("lost-motion", LostMotionProcedure(o).plan(sim.bench->description()),
+                        sim.bench->now() - t0);
   const double n = sim.bench->description().sense.ratio;
   const double losses =
       gear.load.output_drag_coulomb + gear.viscous_output * o.input_speed_rad_s / n;
@@ -94,8 +110,11 @@ TEST(SimulatedBenchAcceptance, LostMotionWithinTwoTenthsOfAnArcminAndStiffnessWi
 TEST(SimulatedBenchAcceptance, DynamicTeNamesOnceRevAndMeshAndListsAliasedLines) {
   Sim sim;
   DynamicTeOptions o;  // 100 rpm
+  const double t0 = sim.bench->now();
   o.output_revolutions = 2;
   const auto out = DynamicTeProcedure(o).run(*sim.bench);
+  expect_estimate_close("dynamic", DynamicTeProcedure(o).plan(sim.bench->description()),
+                        sim.bench->now() - t0);
   const auto& r = out.result;
   EXPECT_NEAR(r.input_speed_hz, 100.0 / 60, 1e-3);
   EXPECT_NEAR(r.sample_rate_hz, 1000, 1);
