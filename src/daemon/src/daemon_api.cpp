@@ -393,19 +393,24 @@ ApiResponse DaemonApi::run_samples(const std::string& id, const HttpTarget& targ
     j["corrupt"] = false;
     return {200, j};
   }
-  const auto log = storage::read_sample_log(path);
-  const std::uint64_t total = log.samples.size();
-  for (std::uint64_t i = from; i < total && i < from + limit; ++i) {
-    samples.push_back(sample_to_json(log.samples[static_cast<std::size_t>(i)]));
+  // Only the page's records are read: a page costs what it returns, however long the run.
+  const auto page = storage::read_sample_log_page(path, from, static_cast<std::size_t>(limit));
+  std::uint64_t gaps = 0, missed = 0, anomalies = 0, incomplete = 0;
+  for (const auto& sample : page.samples) {
+    samples.push_back(sample_to_json(sample));
+    gaps += (sample.flags & storage::kGapBefore) != 0 ? 1 : 0;
+    missed += sample.missed_before;
+    anomalies += (sample.flags & storage::kCounterAnomaly) != 0 ? 1 : 0;
+    incomplete += sample.complete() ? 0 : 1;
   }
-  j["total"] = total;
+  j["total"] = page.total_records;
   j["samples"] = std::move(samples);
-  j["torn_tail_bytes"] = log.torn_tail_bytes;
-  j["corrupt"] = log.corrupt_record;
-  j["gaps"] = {{"gaps", log.gaps.gaps},
-               {"missed_cycles", log.gaps.missed_cycles},
-               {"anomalies", log.gaps.anomalies},
-               {"incomplete_samples", log.gaps.incomplete_samples}};
+  j["torn_tail_bytes"] = page.torn_tail_bytes;
+  j["corrupt"] = page.corrupt_record;
+  j["page_gaps"] = {{"gaps", gaps},
+                    {"missed_cycles", missed},
+                    {"anomalies", anomalies},
+                    {"incomplete_samples", incomplete}};
   return {200, j};
 }
 

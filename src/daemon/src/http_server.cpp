@@ -9,6 +9,7 @@
 #include <chrono>
 #include <stdexcept>
 
+#include "wavebench/daemon/api_request_from_http.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 
 namespace wavebench::daemon {
@@ -20,12 +21,10 @@ using tcp = net::ip::tcp;
 
 namespace {
 
-constexpr std::uint64_t kBodyLimit = 1 << 20;
-constexpr std::uint32_t kHeaderLimit = 16 << 10;
 constexpr auto kIdleTimeout = std::chrono::seconds(60);
 
-// A parse error of Beast's HTTP parser: the client sent something that is not a request we
-// take, and gets a 4xx answer naming it before the connection closes.
+}  // namespace
+
 ApiResponse parse_error_answer(beast::error_code ec) {
   if (ec == http::error::body_limit) {
     return api_error(413, "payload too large", "the request body is over 1 MiB");
@@ -35,6 +34,8 @@ ApiResponse parse_error_answer(beast::error_code ec) {
   }
   return api_error(400, "bad request", "not an HTTP/1.1 request we take (" + ec.message() + ")");
 }
+
+namespace {
 
 class Session : public std::enable_shared_from_this<Session> {
  public:
@@ -48,8 +49,8 @@ class Session : public std::enable_shared_from_this<Session> {
  private:
   void read() {
     parser_.emplace();
-    parser_->body_limit(kBodyLimit);
-    parser_->header_limit(kHeaderLimit);
+    parser_->body_limit(kRequestBodyLimit);
+    parser_->header_limit(kRequestHeaderLimit);
     stream_.expires_after(kIdleTimeout);
     http::async_read(
         stream_, buffer_, *parser_,
@@ -67,13 +68,7 @@ class Session : public std::enable_shared_from_this<Session> {
     }
     if (ec) return;  // timeout or reset: nothing to answer
     const auto& request = parser_->get();
-    ApiRequest api;
-    api.method = std::string(request.method_string());
-    api.target = std::string(request.target());
-    // Two Host headers could mean two different things to us and to a proxy: refuse both.
-    if (request.count(http::field::host) == 1) api.host = std::string(request[http::field::host]);
-    api.authorization = std::string(request[http::field::authorization]);
-    api.body = request.body();
+    const ApiRequest api = api_request_from_http(request);
     ApiResponse response;
     try {
       response = (*handler_)(api);

@@ -9,7 +9,8 @@
 //   POST /api/reset                           clear a fault / reconnect        (token)
 //   GET  /api/runs?procedure=&status=&unit=&limit=
 //   GET  /api/runs/{id}                       record + results.json
-//   GET  /api/runs/{id}/samples?from=&limit=  from samples.wbs
+//   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
+//                                             page_gaps counts gaps within it)
 //   GET  /api/live?since=&limit=              latest samples
 //
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.

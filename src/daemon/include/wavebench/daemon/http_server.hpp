@@ -4,6 +4,8 @@
 // several threads may run it (each connection has its own strand).
 
 #include <boost/asio/io_context.hpp>
+#include <boost/beast/core/error.hpp>
+#include <cstdint>
 #include <functional>
 #include <memory>
 #include <string>
@@ -11,6 +13,13 @@
 #include "wavebench/daemon/daemon_api.hpp"
 
 namespace wavebench::daemon {
+
+inline constexpr std::uint64_t kRequestBodyLimit = 1 << 20;
+inline constexpr std::uint32_t kRequestHeaderLimit = 16 << 10;  // request line included
+
+// The answer to a request Beast could not parse (413 body too large, 431 header too large,
+// 400 otherwise), naming what was wrong.
+ApiResponse parse_error_answer(boost::beast::error_code ec);
 
 class HttpServer {
  public:
