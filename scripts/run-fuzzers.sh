@@ -14,7 +14,7 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
   -DWAVEBENCH_WERROR=OFF >/dev/null
 targets=(fuzz_can_frames fuzz_sdo_client fuzz_twin_config fuzz_bench_config
-  fuzz_procedure_options fuzz_brake_config fuzz_simbench_config)
+  fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
 status=0
@@ -31,6 +31,7 @@ for t in "${targets[@]}"; do
         >"$corpus/example.yaml" ;;
     fuzz_procedure_options) cp -n "$root"/configs/procedures/*.yaml "$corpus/" ;;
     fuzz_brake_config) cp -n "$root"/configs/bench/*.yaml "$corpus/" ;;
+    fuzz_http_api) bash "$root"/fuzz/http_seeds.sh "$corpus" ;;
   esac
   echo "== $t for ${seconds}s"
   # -timeout: any single input taking over 10 s counts as a hang.
