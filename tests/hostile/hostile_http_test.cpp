@@ -4,11 +4,16 @@
 #include <gtest/gtest.h>
 
 #include <cstdio>
+#include <fstream>
+#include <iterator>
+#include <stdexcept>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "daemon_fixture.hpp"
 #include "raw_http.hpp"
+#include "wavebench/daemon/last_resort_guard.hpp"
 
 namespace wavebench::daemon::testing {
 namespace {
@@ -279,6 +284,33 @@ TEST_F(HostileHttp, AMalformedStartIs400EvenWhileARunIsActive) {
   const auto runs = client().get("/api/runs").body["runs"];
   ASSERT_EQ(runs.size(), 1u);
   EXPECT_EQ(runs[0]["id"], id);
+}
+
+TEST(HostileHttpText, AnAnswerHoldingBytesThatAreNotUtf8StillSerialises) {
+  // A unit serial or a path that slipped through with bad bytes must not take the daemon down
+  // when the answer is written (the probe's crash: json::dump threw type_error 316).
+  ApiResponse r{200, {{"unit_serial", std::string("SN-\xff\xfe-1")}, {"ok", true}}};
+  const auto text = response_text(r);
+  const auto back = nlohmann::json::parse(text, nullptr, false);
+  ASSERT_FALSE(back.is_discarded()) << text;
+  EXPECT_EQ(back["unit_serial"], "SN-\xef\xbf\xbd\xef\xbf\xbd-1");  // U+FFFD twice
+  const auto error = api_error(404, "not found", std::string("no resource at /api/\xff\x01"));
+  EXPECT_EQ(error.body["detail"], "no resource at /api/\\xff\\x01");
+}
+
+TEST(HostileHttpDeathTest, TheLastResortGuardRunsItsActionBeforeTheProcessEnds) {
+  const auto marker = fresh_test_dir() / "guard-ran";
+  EXPECT_DEATH(
+      {
+        install_last_resort_guard([&](const std::string& what) {
+          std::ofstream(marker) << what;  // stands in for: bench safe, run marked
+        });
+        std::thread([] { throw std::runtime_error("escaped from an API thread"); }).join();
+      },
+      "");
+  std::ifstream in(marker);
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(text, "uncaught exception: escaped from an API thread");
 }
 
 }  // namespace
