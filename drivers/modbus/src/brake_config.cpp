@@ -151,7 +151,10 @@ void read_map(const YAML::Node& n, BrakeRegisterMap& map) {
       {"temperature", &map.temperature},
       {"slip_power", &map.slip_power},
       {"alarm_code", &map.alarm_code}};
-  for (const auto& [name, spec] : specs) {
+  // Plain copies of the bindings: clang before 16 cannot capture structured bindings.
+  for (const auto& entry : specs) {
+    const char* name = entry.first;
+    RegisterSpec* spec = entry.second;
     optional(n, name, [&](const YAML::Node& v) { *spec = read_spec(v, p + "." + name, *spec); });
   }
   for (const char* name :
@@ -186,7 +189,9 @@ void read_map(const YAML::Node& n, BrakeRegisterMap& map) {
         {"watchdog_tripped", &map.status_bits.watchdog_tripped},
         {"coil_open", &map.status_bits.coil_open},
         {"at_setpoint", &map.status_bits.at_setpoint}};
-    for (const auto& [name, bit] : bits) {
+    for (const auto& entry : bits) {
+      const char* name = entry.first;
+      int* bit = entry.second;
       optional(v, name, [&](auto& b) { *bit = read_int(b, k + "." + name, 0, 15); });
     }
   });
