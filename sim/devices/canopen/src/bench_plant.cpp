@@ -16,6 +16,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Clang before 17 does not deduce aggregate bases without it (the fuzz build uses clang).
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 double three_segment(const model::ThreeSegmentStiffness& s, double x) {
   const double ax = std::abs(x);
