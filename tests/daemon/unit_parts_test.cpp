@@ -75,7 +75,7 @@ TEST(ApiToken, CreatedOwnerOnlyAndReadBack) {
   EXPECT_NE(load_or_create_token(dir / "other.token"), token);
   EXPECT_THROW(read_token(dir / "missing.token"), std::runtime_error);
   std::ofstream(dir / "empty.token") << "\n";
-  EXPECT_THROW(read_token(dir / "empty.token"), std::runtime_error);
+  EXPECT_THROW(read_token(dir / "empty.token"), TokenFileRefused);
 }
 
 TEST(ApiToken, BearerMustMatchExactly) {

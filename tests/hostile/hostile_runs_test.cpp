@@ -179,7 +179,9 @@ TEST_F(HostileRuns, AStartTooBigForTheFreeDiskIsRefusedNamingTheEstimateAndTheFr
   EXPECT_EQ(e.sample_log_bytes, 64 + e.samples * 96);
   // The real free space of a real folder, and of one that does not exist yet.
   EXPECT_GT(run_budget(dir_).free_disk_bytes, 0u);
-  EXPECT_EQ(run_budget(dir_ / "not" / "yet").free_disk_bytes, run_budget(dir_).free_disk_bytes);
+  // Same file system; other tests write beside this one, so the figure may move a little.
+  EXPECT_NEAR(static_cast<double>(run_budget(dir_ / "not" / "yet").free_disk_bytes),
+              static_cast<double>(run_budget(dir_).free_disk_bytes), 256.0 * (1 << 20));
 }
 
 // A real small file system, where the process may mount one (root, or a user namespace).

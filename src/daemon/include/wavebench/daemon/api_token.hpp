@@ -27,7 +27,8 @@ class TokenFileRefused : public std::invalid_argument {
 // std::runtime_error naming the path when the file cannot be read or created.
 std::string load_or_create_token(const std::filesystem::path& path);
 // Reads an existing token (the client side): a regular file of at most kMaxTokenFileBytes
-// holding printable characters. Throws std::runtime_error naming the path.
+// holding printable characters. Throws TokenFileRefused when the file is not that, and
+// std::runtime_error when it cannot be read; both name the path.
 std::string read_token(const std::filesystem::path& path);
 // Whether an Authorization header value carries `token` (compared in constant time).
 bool bearer_matches(std::string_view authorization, std::string_view token);
