@@ -14,7 +14,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -50,64 +49,32 @@ void write_file(const fs::path& path, const std::string& text, mode_t mode) {
 
 TEST(HostileDaemonStart, AWeakTokenFileIsRefusedWithTheReasonAndExit2) {
   const auto dir = fresh_test_dir();
+  // A token file's content and mode, or a folder / FIFO in its place; what the refusal says.
+  enum class Kind { kFile, kFolder, kFifo };
   struct Case {
     std::string name;
-    std::function<fs::path()> make;
+    Kind kind;
+    std::string content;
+    mode_t mode;
     std::string expected_words;
   };
+  const std::string good = "0123456789abcdef0123456789abcdef\n";
   const std::vector<Case> cases = {
-      {"world-readable",
-       [&] {
-         write_file(dir / "t1", "0123456789abcdef0123456789abcdef\n", 0644);
-         return dir / "t1";
-       },
-       "mode 0644"},
-      {"group-writable",
-       [&] {
-         write_file(dir / "t2", "0123456789abcdef0123456789abcdef\n", 0620);
-         return dir / "t2";
-       },
-       "mode 0620"},
-      {"three characters",
-       [&] {
-         write_file(dir / "t3", "abc\n", 0600);
-         return dir / "t3";
-       },
-       "3 characters"},
-      {"a folder",
-       [&] {
-         fs::create_directories(dir / "t4");
-         return dir / "t4";
-       },
-       "not a regular file"},
-      {"a FIFO (must not block)",
-       [&] {
-         ::mkfifo((dir / "t5").c_str(), 0600);
-         return dir / "t5";
-       },
-       "not a regular file"},
-      {"blank",
-       [&] {
-         write_file(dir / "t6", "  \n\n", 0600);
-         return dir / "t6";
-       },
-       "empty"},
-      {"two words",
-       [&] {
-         write_file(dir / "t7", "0123456789abcdef 0123456789abcdef\n", 0600);
-         return dir / "t7";
-       },
-       "printable"},
-      {"too large",
-       [&] {
-         write_file(dir / "t8", std::string(100000, 'a'), 0600);
-         return dir / "t8";
-       },
-       "at most 4096 bytes"},
+      {"world-readable", Kind::kFile, good, 0644, "mode 0644"},
+      {"group-writable", Kind::kFile, good, 0620, "mode 0620"},
+      {"three characters", Kind::kFile, "abc\n", 0600, "3 characters"},
+      {"a folder", Kind::kFolder, "", 0700, "not a regular file"},
+      {"a FIFO (must not block)", Kind::kFifo, "", 0600, "not a regular file"},
+      {"blank", Kind::kFile, "  \n\n", 0600, "empty"},
+      {"two words", Kind::kFile, "0123456789abcdef 0123456789abcdef\n", 0600, "printable"},
+      {"too large", Kind::kFile, std::string(100000, 'a'), 0600, "at most 4096 bytes"},
   };
   int refused = 0;
   for (const auto& c : cases) {
-    const auto path = c.make();
+    const auto path = dir / ("token-" + std::to_string(&c - cases.data()));
+    if (c.kind == Kind::kFile) write_file(path, c.content, c.mode);
+    if (c.kind == Kind::kFolder) fs::create_directories(path);
+    if (c.kind == Kind::kFifo) ::mkfifo(path.c_str(), c.mode);
     const auto runs = dir / ("runs-" + std::to_string(refused));
     const auto e = run_daemon(
         {"--runs", runs.string(), "--listen", "127.0.0.1:0", "--token-file", path.string()}, dir);
