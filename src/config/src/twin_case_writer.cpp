@@ -14,6 +14,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Clang before 17 does not deduce aggregate bases without it (the fuzz build uses clang).
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 const char* family_name(model::TeFamily f) {
   switch (f) {
