@@ -2,7 +2,11 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <atomic>
 #include <fstream>
+#include <future>
+#include <stdexcept>
+#include <thread>
 
 #include "test_dir.hpp"
 #include "wavebench/daemon/api_token.hpp"
@@ -11,6 +15,7 @@
 #include "wavebench/daemon/daemon_state.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 
 namespace wavebench::daemon::testing {
@@ -160,3 +165,36 @@ TEST(DaemonState, FromLifecycleAndRun) {
 
 }  // namespace
 }  // namespace wavebench::daemon::testing
+
+namespace wavebench::daemon {
+namespace {
+
+TEST(LowPriorityReads, AnswersRefusesWhenAllAreBusyAndTurnsExceptionsInto500) {
+  LowPriorityReads reads(2);
+  EXPECT_EQ(reads.run([] { return ApiResponse{200, {{"ok", true}}}; })->body["ok"], true);
+  const auto failed = reads.run([]() -> ApiResponse { throw std::runtime_error("disk gone"); });
+  ASSERT_TRUE(failed);
+  EXPECT_EQ(failed->status, 500);
+  EXPECT_EQ(failed->body["detail"], "disk gone");
+
+  // Two reads held busy: a third is refused at once rather than queued behind them.
+  std::promise<void> release;
+  auto released = release.get_future().share();
+  std::atomic<int> running{0};
+  const auto hold = [&] {
+    ++running;
+    released.wait();
+    return ApiResponse{200, nullptr};
+  };
+  std::thread a([&] { reads.run(hold); });
+  std::thread b([&] { reads.run(hold); });
+  while (running < 2) std::this_thread::yield();
+  EXPECT_FALSE(reads.run([] { return ApiResponse{200, nullptr}; }).has_value());
+  release.set_value();
+  a.join();
+  b.join();
+  EXPECT_TRUE(reads.run([] { return ApiResponse{204, nullptr}; }).has_value());
+}
+
+}  // namespace
+}  // namespace wavebench::daemon

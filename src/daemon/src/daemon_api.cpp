@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
 #include "wavebench/daemon/sample_json.hpp"
@@ -47,23 +48,6 @@ bool looks_like_run_id(const std::string& id) {
   }
   return true;
 }
-
-// Holds one of the API's read slots for the duration of a costly read.
-class ReadSlot {
- public:
-  explicit ReadSlot(std::counting_semaphore<DaemonApi::kMaxConcurrentReads>& s)
-      : sem_(s), held_(s.try_acquire_for(std::chrono::milliseconds(50))) {}
-  ~ReadSlot() {
-    if (held_) sem_.release();
-  }
-  ReadSlot(const ReadSlot&) = delete;
-  ReadSlot& operator=(const ReadSlot&) = delete;
-  bool held() const { return held_; }
-
- private:
-  std::counting_semaphore<DaemonApi::kMaxConcurrentReads>& sem_;
-  bool held_;
-};
 
 ApiResponse busy_reading() {
   return api_error(503, "busy",
@@ -120,7 +104,12 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       live_(live),
       token_(std::move(token)),
       host_check_(std::move(host_check)),
-      reads_(std::make_unique<std::counting_semaphore<kMaxConcurrentReads>>(kMaxConcurrentReads)) {}
+      reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)) {}
+
+ApiResponse DaemonApi::costly(const std::function<ApiResponse()>& read) const {
+  auto answer = reads_->run(read);
+  return answer ? std::move(*answer) : busy_reading();
+}
 
 ApiResponse DaemonApi::handle(const ApiRequest& request) const noexcept {
   try {
@@ -196,10 +185,18 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       return start_run(request);
     }
     if (seg.size() == 3 && seg[1] == "runs") {
-      return get ? run_detail(seg[2]) : method_not_allowed("GET");
+      if (!get) return method_not_allowed("GET");
+      return costly([&] { return run_detail(seg[2]); });
     }
     if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
-      return get ? run_samples(seg[2], target) : method_not_allowed("GET");
+      if (!get) return method_not_allowed("GET");
+      return costly([&] {
+        try {
+          return run_samples(seg[2], target);
+        } catch (const BadParameter& e) {
+          return api_error(400, "bad request", e.what());
+        }
+      });
     }
   } catch (const BadParameter& e) {
     return api_error(400, "bad request", e.what());
@@ -348,8 +345,6 @@ ApiResponse DaemonApi::list_runs(const HttpTarget& target) const {
 ApiResponse DaemonApi::run_detail(const std::string& id) const {
   if (!looks_like_run_id(id))
     return api_error(404, "not found", "run '" + id + "' is not a run id");
-  const ReadSlot slot(*reads_);
-  if (!slot.held()) return busy_reading();
   const auto run = store_.find_run(id);
   if (!run) return api_error(404, "not found", "run '" + id + "' is not in the index");
   nlohmann::json j = {{"run", storage::to_json(*run)}};
@@ -378,8 +373,6 @@ ApiResponse DaemonApi::run_samples(const std::string& id, const HttpTarget& targ
   }
   if (!looks_like_run_id(id))
     return api_error(404, "not found", "run '" + id + "' is not a run id");
-  const ReadSlot slot(*reads_);
-  if (!slot.held()) return busy_reading();
   if (!store_.find_run(id)) {
     return api_error(404, "not found", "run '" + id + "' is not in the index");
   }

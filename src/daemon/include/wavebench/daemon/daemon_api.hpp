@@ -15,13 +15,13 @@
 //
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
-// Reads that cost in proportion to the data (sample pages, run details) run at most
-// kMaxConcurrentReads at a time; the others get 503 at once, so status, abort and stop are
-// always answered.
+// Reads that cost in proportion to the data (sample pages, run details) run on
+// kMaxConcurrentReads low-priority threads (low_priority_reads.hpp); when all are busy the
+// others get 503 at once, so status, abort and stop are always answered.
 
+#include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
-#include <semaphore>
 #include <string>
 
 #include "wavebench/daemon/bench_thread.hpp"
@@ -45,9 +45,11 @@ struct ApiResponse {
   nlohmann::json body;
 };
 
+class LowPriorityReads;
+
 class DaemonApi {
  public:
-  static constexpr std::ptrdiff_t kMaxConcurrentReads = 2;
+  static constexpr int kMaxConcurrentReads = 2;
 
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
             HostCheck host_check = HostCheck());
@@ -57,6 +59,7 @@ class DaemonApi {
 
  private:
   ApiResponse route(const ApiRequest& request) const;
+  ApiResponse costly(const std::function<ApiResponse()>& read) const;
   ApiResponse status() const;
   ApiResponse start_run(const ApiRequest& request) const;
   ApiResponse abort_run() const;
@@ -72,7 +75,7 @@ class DaemonApi {
   LiveSampleBuffer& live_;
   std::string token_;
   HostCheck host_check_;
-  std::unique_ptr<std::counting_semaphore<kMaxConcurrentReads>> reads_;
+  std::shared_ptr<LowPriorityReads> reads_;
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.
