@@ -22,6 +22,9 @@ template <class... Ts>
 struct Overloaded : Ts... {
   using Ts::operator()...;
 };
+// Clang before 17 does not deduce aggregate bases without it (the fuzz build uses clang).
+template <class... Ts>
+Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // The nominal terms' orders, then the standard families of model.md §3, each once.
 std::vector<HarmonicOrder> candidate_orders(const model::GearParams& g,
