@@ -84,6 +84,9 @@ std::vector<HostileText> hostile_texts() {
       {"alias bomb", bomb, "nodes"},
       {"a list as a key", "? [a, b]\n: 1\n", "(document)"},
       {"broken YAML", "outer: [1, 2\n", "(document)"},
+      // yaml-cpp 0.7 loops forever on these (found by fuzz_procedure_options).
+      {"a ',' starting the document", ",'", "(document)"},
+      {"a ',' starting a later line", "outer:\n  a: 1\n ,  b: 2\n", "(document)"},
   };
 }
 
@@ -120,7 +123,7 @@ TEST(HostileConfig, EveryLoaderRefusesHostileTextsWithExit2AndTheKey) {
   std::cout << "[hostile] config texts: tried " << tried << " (" << hostile_texts().size()
             << " texts x " << loaders().size() << " loaders), refused " << refused << "\n";
   EXPECT_EQ(refused, tried);
-  EXPECT_EQ(tried, 95);
+  EXPECT_EQ(tried, 105);
 }
 
 TEST(HostileConfig, EveryLoaderRefusesWhatIsNotARegularFile) {

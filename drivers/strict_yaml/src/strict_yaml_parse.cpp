@@ -108,6 +108,55 @@ void refuse_non_utf8(const std::string& text, std::size_t at, const std::string&
                       source);
 }
 
+// yaml-cpp 0.7 loops forever, allocating, on a ',' that starts a line outside [...] and {...}
+// (found by fuzz_procedure_options: the two bytes ",'"). Such a line is never valid YAML, as a
+// plain scalar cannot start with ','; only a block scalar or a multi-line quoted string could
+// hold it, and configs here have neither. Flow depth is tracked outside quotes and comments.
+void refuse_leading_flow_comma(const std::string& text, const std::string& source) {
+  int depth = 0;
+  std::size_t line = 1;
+  bool at_line_start = true;
+  char quote = 0;
+  char previous = '\n';
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (c == '\n') {
+      ++line;
+      at_line_start = true;
+      previous = c;
+      continue;
+    }
+    if (quote != 0) {
+      if (c == '\\' && quote == '"') {
+        ++i;
+      } else if (c == quote) {
+        quote = 0;
+      }
+      previous = c;
+      continue;
+    }
+    if (at_line_start && (c == ' ' || c == '\t')) continue;
+    if (at_line_start && c == ',' && depth == 0) {
+      throw RefusedConfig(kDocument, "line " + std::to_string(line) + " starts with ','",
+                          "YAML (a ',' only separates items inside [...] or {...})", source);
+    }
+    at_line_start = false;
+    const bool token_start = previous == ' ' || previous == '\t' || previous == '\n' ||
+                             previous == ':' || previous == '[' || previous == '{' ||
+                             previous == ',';
+    if (c == '#' && token_start) {
+      while (i + 1 < text.size() && text[i + 1] != '\n') ++i;
+    } else if ((c == '"' || c == '\'') && token_start) {
+      quote = c;
+    } else if (c == '[' || c == '{') {
+      ++depth;
+    } else if ((c == ']' || c == '}') && depth > 0) {
+      --depth;
+    }
+    previous = c;
+  }
+}
+
 std::string shape(const YAML::Node& n) {
   if (n.IsScalar()) return n.Scalar();
   if (n.IsMap()) return "a mapping";
@@ -179,6 +228,7 @@ YAML::Node parse_strict_yaml(const std::string& text, const std::string& source)
   if (const std::size_t bad = first_non_utf8_byte(text); bad != text.size()) {
     refuse_non_utf8(text, bad, source);
   }
+  refuse_leading_flow_comma(text, source);
   std::vector<YAML::Node> documents;
   try {
     documents = YAML::LoadAll(text);
