@@ -1,5 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <boost/asio/steady_timer.hpp>
+#include <chrono>
+#include <thread>
+
 #include "scripted_peer.hpp"
 #include "wavebench/canopen/heartbeat_consumer.hpp"
 #include "wavebench/canopen/nmt.hpp"
@@ -116,6 +120,75 @@ TEST_F(HeartbeatFixture, OtherNodesHeartbeatsDoNotArm) {
   node.send("703#05");
   io.run_for(std::chrono::milliseconds(5));
   EXPECT_FALSE(consumer.armed());
+}
+
+// Judged by arrival: a consumer on a loop that is held (post-run work on its thread) with a
+// backlog of frames, as SocketCAN delivers them with their kernel receive timestamps.
+struct HeartbeatByArrival : ::testing::Test {
+  using SystemClock = std::chrono::system_clock;
+  static constexpr auto kConsumerTime = std::chrono::milliseconds(200);
+
+  // A heartbeat as the bus received it at `at`.
+  void send_received_at(const char* candump, SystemClock::time_point at) {
+    auto frame = testing::F(candump);
+    frame.timestamp = at;
+    node->send(frame);
+  }
+
+  boost::asio::io_context io;
+  can::VirtualCanBus bus{io};
+  std::unique_ptr<can::VirtualCanEndpoint> master = bus.endpoint("master");
+  std::unique_ptr<can::VirtualCanEndpoint> node = bus.endpoint("node 2");
+  std::vector<std::string> events;
+  HeartbeatConsumer consumer{
+      *master, 2, kConsumerTime,
+      HeartbeatConsumer::Hooks{nullptr, [this](NodeId) { events.push_back("lost"); },
+                               [this](NodeId) { events.push_back("back"); }}};
+};
+
+TEST_F(HeartbeatByArrival, AHeartbeatThatArrivedInTimeIsNotLostBecauseTheLoopReadItLate) {
+  const auto t0 = SystemClock::now();
+  send_received_at("702#05", t0);
+  io.poll();
+  ASSERT_TRUE(consumer.armed());
+  // Due after the consumer's deadline, this handler runs after the consumer's timer handler
+  // when the held loop turns again, and hands over the heartbeat that arrived at t0 + 190 ms
+  // and waited unread behind other frames.
+  boost::asio::steady_timer backlog(io);
+  backlog.expires_after(std::chrono::milliseconds(250));
+  backlog.async_wait([&](const boost::system::error_code&) {
+    send_received_at("702#05", t0 + std::chrono::milliseconds(190));
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(320));  // the loop is held
+  io.restart();
+  io.poll();
+  EXPECT_EQ(consumer.heartbeats(), 2U);
+  EXPECT_GE(consumer.late_verdicts_deferred(), 1U) << "the timer did not run late first";
+  EXPECT_TRUE(events.empty()) << events.front();
+  EXPECT_FALSE(consumer.timed_out());
+}
+
+TEST_F(HeartbeatByArrival, ASilentNodeIsStillLostAfterAHeldLoop) {
+  send_received_at("702#05", SystemClock::now());
+  io.poll();
+  std::this_thread::sleep_for(std::chrono::milliseconds(320));  // the loop is held
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+  while (!consumer.timed_out() && std::chrono::steady_clock::now() < deadline) {
+    io.restart();
+    io.run_one_for(std::chrono::milliseconds(10));
+  }
+  EXPECT_TRUE(consumer.timed_out());
+  EXPECT_EQ(events, (std::vector<std::string>{"lost"}));
+}
+
+TEST_F(HeartbeatByArrival, HeartbeatsTooFarApartAreALossEvenWhenReadTogether) {
+  const auto now = SystemClock::now();
+  send_received_at("702#05", now - std::chrono::milliseconds(300));
+  send_received_at("702#05", now);
+  io.poll();
+  EXPECT_EQ(consumer.heartbeats(), 2U);
+  EXPECT_EQ(events, (std::vector<std::string>{"lost", "back"}));
+  EXPECT_FALSE(consumer.timed_out());
 }
 
 }  // namespace

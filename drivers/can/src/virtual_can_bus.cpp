@@ -40,7 +40,8 @@ void VirtualCanBus::transmit(const VirtualCanEndpoint* from, const Frame& frame)
   boost::asio::post(io_, [weak, from, frame = Frame(frame)]() mutable {
     auto eps = weak.lock();
     if (!eps) return;
-    frame.timestamp = std::chrono::system_clock::now();
+    if (frame.timestamp.time_since_epoch().count() == 0)
+      frame.timestamp = std::chrono::system_clock::now();
     const auto snapshot = *eps;
     for (auto* ep : snapshot) {
       if (ep == from) continue;

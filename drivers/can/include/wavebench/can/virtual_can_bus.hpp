@@ -2,6 +2,8 @@
 // An in-process CAN bus: any number of endpoints, every frame sent by one endpoint is delivered
 // to every other endpoint (as SocketCAN's loopback does), in send order, through one io_context.
 // Deterministic: delivery happens only while the io_context runs, one posted handler per frame.
+// Frames are stamped on delivery, except a frame sent with a timestamp, which keeps it (tests
+// replay frames that arrived while the receiver's loop was held).
 
 #include <boost/asio/io_context.hpp>
 #include <memory>
