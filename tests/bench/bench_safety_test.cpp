@@ -159,6 +159,10 @@ TEST(BenchSafety, DriveFaultEmcyTrips) {
   EXPECT_FALSE(sim.brake_output_on());
   EXPECT_TRUE(sim.brake_setpoint_zero());
   sim.bench->clear_fault();
+  // The reset clears the drive's fault but leaves its power stage off; the next motion
+  // enables it.
+  EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kSwitchOnDisabled);
+  sim.bench->run_input_velocity(20 * kRpm);
   EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kOperationEnabled);
 }
 

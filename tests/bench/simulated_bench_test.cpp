@@ -22,7 +22,8 @@ TEST(SimulatedBench, ConnectsAndAProfilePositionMoveLands) {
   EXPECT_EQ(sim.bench->state(), BenchLifecycle::kUnconfigured);
   sim.bench->connect();
   ASSERT_EQ(sim.bench->state(), BenchLifecycle::kReady);
-  EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kOperationEnabled);
+  // Inactive until the first motion command (bench_power_test.cpp).
+  EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kSwitchOnDisabled);
   // The twin's gear is the nominal case, the simulated unit's is varied from it.
   EXPECT_NE(sim.access->true_gear().backlash.total_rad,
             sim.bench->description().twin_gear.backlash.total_rad);
@@ -30,6 +31,7 @@ TEST(SimulatedBench, ConnectsAndAProfilePositionMoveLands) {
   const double theta0 = sim.bench->latest_sample().theta_in_rad;
   const double target = theta0 + 5 * 2 * M_PI;  // five input turns
   sim.bench->move_input_to(target, 300 * kRpm);
+  EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kOperationEnabled);
   const auto& s = sim.bench->latest_sample();
   ASSERT_TRUE(s.valid(storage::kThetaInValid));
   EXPECT_NEAR(s.theta_in_rad, target, 2e-3);  // within the drive's position window

@@ -53,11 +53,16 @@ class PlantBench final : public bench::Bench {
   bench::AcquisitionStats acquisition_stats() const override;
   void request_stop(const std::string& reason) noexcept override;
 
+  // Counted only: the plant has no power stage to switch off.
+  void deactivate() noexcept override { ++deactivations_; }
+  int deactivations() const { return deactivations_; }
+
   simdevices::SimulatedBenchPlant& plant() { return plant_; }
   double brake_setting() const { return brake_; }
 
  private:
   static constexpr double kSyncPeriod = 1e-3;
+  int deactivations_ = 0;
   static constexpr int kControlSteps = 4;  // 250 us servo period
   enum class Mode { kHold, kPosition, kVelocity };
 

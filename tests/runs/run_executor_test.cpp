@@ -58,6 +58,7 @@ TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
   const auto out = execute_run(bench, *store_, small_static(),
                                [&](const RunProgress& p) { progress.push_back(p); });
   EXPECT_EQ(out.status, storage::RunStatus::kComplete);
+  EXPECT_EQ(bench.deactivations(), 1);  // the drive is powered down when the run ends
   ASSERT_FALSE(progress.empty());
   EXPECT_EQ(progress.back().fraction, 1.0);
   EXPECT_EQ(progress.front().run_id, out.run_id);
@@ -110,6 +111,7 @@ TEST_F(RunExecutorTest, AnOperatorStopFromAnotherThreadAbortsWithTheReasonAndKee
   EXPECT_EQ(out.reason, "operator stop");
   EXPECT_EQ(bench.state(), bench::BenchLifecycle::kFault);
   EXPECT_EQ(bench.brake_setting(), 0.0);  // safe state
+  EXPECT_EQ(bench.deactivations(), 1);
 
   const auto record = store_->find_run(out.run_id);
   ASSERT_TRUE(record);
@@ -135,6 +137,7 @@ TEST_F(RunExecutorTest, ASafetyTripMidRunIsAnAbortNotAnException) {
   const auto out = execute_run(bench, *store_, r);
   EXPECT_EQ(out.status, storage::RunStatus::kAborted);
   EXPECT_EQ(out.reason, o.trip_reason);
+  EXPECT_EQ(bench.deactivations(), 1);
   const auto log = storage::read_sample_log(store_->paths(out.run_id).samples);
   EXPECT_NEAR(static_cast<double>(log.samples.size()), 3000, 5);
 }

@@ -25,6 +25,8 @@ class ForwardingBench : public Bench {
   BenchLifecycle state() const noexcept override { return inner_->state(); }
   std::string fault_reason() const override { return inner_->fault_reason(); }
   void clear_fault() override { inner_->clear_fault(); }
+  void activate() override { inner_->activate(); }
+  void deactivate() noexcept override { inner_->deactivate(); }
   void move_input_to(double theta, double speed) override { inner_->move_input_to(theta, speed); }
   void run_input_velocity(double omega) override { inner_->run_input_velocity(omega); }
   void stop_motion() override { inner_->stop_motion(); }

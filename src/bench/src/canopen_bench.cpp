@@ -105,13 +105,18 @@ void CanopenBench::connect() {
   stats_ = {};
   lateness_ = {};
   mode_.reset();
+  powered_ = false;
+  last_drive_heartbeat_ = {};
   t0_ = Clock::now();
   try {
     connect_brake();
     configure_nodes();
     start_acquisition();
     set_mode(canopen::OperationMode::profile_position);
-    drive_command("enable operation", [&] { drive_->enable_operation(); });
+    // Inactive until a run needs the drive: a drive left enabled (a master that died mid-run)
+    // or in fault is brought to its power-off state here.
+    drive_command("disable voltage",
+                  [&] { drive_->go_to(canopen::Cia402State::switch_on_disabled); });
     const auto can_channels = storage::kThetaInValid | storage::kThetaOutValid |
                               storage::kInputSpeedValid | storage::kTorqueValid;
     if (!run_until([&] { return (latest_.flags & can_channels) == can_channels; }, 5.0)) {
@@ -132,10 +137,11 @@ void CanopenBench::connect() {
     throw std::runtime_error("bench '" + config_.description.name + "': connect: " + e.what());
   }
   lifecycle_ = BenchLifecycle::kReady;
-  spdlog::info("bench '{}' ready: SYNC {} us on {}, {} clock, estimated bus load {:.0f} %",
-               config_.description.name, std::lround(config_.description.sync_period_s * 1e6),
-               bus_.name(), config_.description.simulated_clock ? "simulated" : "real",
-               stats_.bus_load * 100);
+  spdlog::info(
+      "bench '{}' ready (inactive, drive disabled): SYNC {} us on {}, {} clock, estimated bus "
+      "load {:.0f} %",
+      config_.description.name, std::lround(config_.description.sync_period_s * 1e6), bus_.name(),
+      config_.description.simulated_clock ? "simulated" : "real", stats_.bus_load * 100);
 }
 
 void CanopenBench::connect_brake() {
@@ -276,16 +282,48 @@ void CanopenBench::stop_acquisition() noexcept {
 void CanopenBench::disconnect() noexcept {
   if (lifecycle_ == BenchLifecycle::kUnconfigured && !acquiring_ && !brake_) return;
   make_brake_safe();
-  if (drive_ && acquiring_) {
-    std::error_code ec;
-    drive_->disable_voltage(ec);
-  }
-  stop_acquisition();
   if (brake_supervisor_) brake_supervisor_->stop();
   brake_supervisor_.reset();
+  release_brake_watchdog();
+  if (drive_ && acquiring_) {
+    finish_safe_state();
+    power_down_drive(canopen::Cia402State::switch_on_disabled);
+  }
+  // From here nodes leaving operational and silent heartbeats are what was asked for.
+  lifecycle_ = BenchLifecycle::kUnconfigured;
+  const bool was_acquiring = acquiring_;
+  stop_acquisition();
+  if (was_acquiring) nodes_to_preoperational();
   if (brake_) brake_->disconnect();
   brake_.reset();
-  lifecycle_ = BenchLifecycle::kUnconfigured;
+}
+
+void CanopenBench::release_brake_watchdog() noexcept {
+  if (!brake_) return;
+  // A real controller latches a watchdog alarm when the heartbeats stop with its watchdog armed:
+  // switched off, the next connect starts without an alarm to reset.
+  try {
+    brake_->set_watchdog(std::chrono::milliseconds(0));
+  } catch (const std::exception& e) {
+    spdlog::warn("bench '{}': brake controller watchdog not switched off: {}",
+                 config_.description.name, e.what());
+  }
+}
+
+void CanopenBench::nodes_to_preoperational() noexcept {
+  std::error_code ec;
+  master_->nmt().send(canopen::NmtCommand::enter_preoperational, 0, ec);
+  if (ec) {
+    spdlog::warn("bench '{}': NMT enter pre-operational not sent: {}", config_.description.name,
+                 ec.message());
+    return;
+  }
+  // A bus that delivers from the event loop (the in-process one) sends it on the next turn.
+  try {
+    if (io_.stopped()) io_.restart();
+    io_.poll();
+  } catch (const std::exception&) {
+  }
 }
 
 // --- acquisition ----------------------------------------------------------------------------
@@ -399,6 +437,16 @@ void CanopenBench::on_heartbeat_frame(const can::Frame& frame) noexcept {
   const auto hb = canopen::decode_heartbeat(frame);
   if (!hb || !last_heartbeat_.contains(hb->node)) return;
   last_heartbeat_[hb->node] = now();
+  if (hb->node == config_.can.drive_node) {
+    const auto processed = Clock::now();
+    if (last_drive_heartbeat_ != Clock::time_point{}) {
+      stats_.drive_heartbeat_gap_max_s =
+          std::max(stats_.drive_heartbeat_gap_max_s,
+                   std::chrono::duration<double>(processed - last_drive_heartbeat_).count());
+    }
+    last_drive_heartbeat_ = processed;
+    ++stats_.drive_heartbeats;
+  }
   if (lifecycle_ == BenchLifecycle::kReady && hb->state != canopen::NmtState::operational) {
     trip("node " + std::to_string(hb->node) + " (" + node_name(hb->node) +
          ") left operational: " + std::string(canopen::to_string(hb->state)));
@@ -530,7 +578,10 @@ void CanopenBench::clear_fault() {
          {config_.can.drive_node, config_.can.encoder_node, config_.can.torque_node})
       master_->nmt().send(canopen::NmtCommand::start, node);
     finish_safe_state();
-    drive_->enable_operation();
+    // The fault reset is on the way to Switch On Disabled; the drive stays off until a run
+    // needs it.
+    drive_->go_to(canopen::Cia402State::switch_on_disabled);
+    powered_ = false;
     drive_->set_mode(canopen::OperationMode::profile_position);
     drive_->set_target_velocity(0);
     mode_ = canopen::OperationMode::profile_position;
@@ -547,6 +598,54 @@ void CanopenBench::clear_fault() {
   quick_stop_pending_ = false;
   lifecycle_ = BenchLifecycle::kReady;
   spdlog::info("bench '{}': fault cleared", config_.description.name);
+}
+
+// --- power ----------------------------------------------------------------------------------
+
+void CanopenBench::activate() {
+  ensure_ready();
+  if (powered_) return;
+  // Enabled in profile position, which holds where the drive stands until a new set-point; a
+  // stale profile-velocity target must not start the shaft on enable.
+  if (mode_ == canopen::OperationMode::profile_velocity)
+    drive_command("target velocity 0", [&] { drive_->set_target_velocity(0); });
+  set_mode(canopen::OperationMode::profile_position);
+  powered_ = true;  // from the first controlword on: deactivate() must power it down
+  drive_command("enable operation", [&] { drive_->enable_operation(); });
+  spdlog::info("bench '{}': servo drive enabled", config_.description.name);
+}
+
+void CanopenBench::deactivate() noexcept {
+  if (!acquiring_) return;
+  make_brake_safe();
+  finish_safe_state();
+  power_down_drive(tripped_ ? canopen::Cia402State::switch_on_disabled
+                            : canopen::Cia402State::ready_to_switch_on);
+}
+
+void CanopenBench::power_down_drive(canopen::Cia402State target) noexcept {
+  if (!drive_) return;
+  std::error_code ec;
+  const auto state = drive_->state(ec);
+  if (!ec) {
+    if (state == canopen::Cia402State::fault || state == target ||
+        state == canopen::Cia402State::switch_on_disabled) {
+      powered_ = false;
+      return;
+    }
+    if (mode_ == canopen::OperationMode::profile_velocity) drive_->set_target_velocity(0, ec);
+    drive_->go_to(target, ec);
+  }
+  if (ec) {
+    spdlog::error(
+        "bench '{}': servo drive (node {}) not powered down to {}: {}", config_.description.name,
+        config_.can.drive_node, canopen::to_string(target),
+        drive_->last_failure().message.empty() ? ec.message() : drive_->last_failure().message);
+    return;
+  }
+  powered_ = false;
+  spdlog::info("bench '{}': servo drive disabled ({})", config_.description.name,
+               canopen::to_string(target));
 }
 
 // --- blocking calls -------------------------------------------------------------------------
@@ -636,6 +735,7 @@ void CanopenBench::move_input_to(double theta_in_rad, double speed_rad_s) {
     move.acceleration = a;
     move.deceleration = a;
   }
+  activate();
   set_mode(canopen::OperationMode::profile_position);
   const double distance = std::abs(theta_in_rad - latest_.theta_in_rad);
   drive_command("profile position move", [&] { drive_->move(move); });
@@ -664,13 +764,14 @@ void CanopenBench::run_input_velocity(double omega_in_rad_s) {
                                 " rad/s: expected |omega| <= safety.max_input_speed = " +
                                 std::to_string(limits.max_input_speed_rad_s) + " rad/s");
   const auto counts = scaling_.velocity_counts(omega_in_rad_s, "run_input_velocity omega");
+  activate();
   set_mode(canopen::OperationMode::profile_velocity);
   drive_command("target velocity", [&] { drive_->set_target_velocity(counts); });
 }
 
 void CanopenBench::stop_motion() {
   ensure_ready();
-  if (mode_ == canopen::OperationMode::profile_velocity)
+  if (powered_ && mode_ == canopen::OperationMode::profile_velocity)
     drive_command("target velocity 0", [&] { drive_->set_target_velocity(0); });
   constexpr double kStill = 0.05;  // rad/s at the input (0.5 rpm)
   int still = 0;

@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <variant>
 
+#include "beside_idling_bench.hpp"
 #include "parsed_request.hpp"
 #include "run_request_check_detail.hpp"
 #include "sample_log_observer.hpp"
@@ -134,6 +135,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
   ProcedureResult procedure_result;
   nlohmann::json twin_json;
   std::optional<storage::SampleLogWriter> writer;
+#if WAVEBENCH_RUN_TWIN
+  std::unique_ptr<twin::TwinBesideBench> twin_beside;
+#endif
   try {
     writer.emplace(paths.samples);
   } catch (const std::exception& e) {
@@ -142,7 +146,6 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
   if (writer) {
     SampleLogObserver log(*writer, bench);
 #if WAVEBENCH_RUN_TWIN
-    std::unique_ptr<twin::TwinBesideBench> twin_beside;
     if (request.twin) {
       try {
         twin_beside =
@@ -173,6 +176,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       // The log may fail after the procedure's last blocking call: the run is still missing
       // samples.
       if (log.failed()) abort_with(log.failure());
+      // The servo is powered only while the run needs it: complete, aborted or failed, the
+      // drive goes off and the brake output too (samples of it still logged).
+      bench.deactivate();
     }
     try {
       writer->close();
@@ -180,6 +186,11 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       abort_with(std::string("sample log: not closed cleanly: ") + e.what());
     }
     results["acquisition"] = acquisition_json(bench.acquisition_stats(), *writer, log);
+  }
+
+  // Everything after the procedure works on disk and CPU only: beside the bench, so that its
+  // event loop keeps turning (heartbeats, SYNC, the live view) meanwhile.
+  run_beside_idling_bench(bench, [&] {
 #if WAVEBENCH_RUN_TWIN
     if (twin_beside) {
       report_progress("twin", 0.92);
@@ -207,40 +218,40 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       }
     }
 #endif
-  }
 
-  for (auto& [key, value] : procedure_result.json.items()) results[key] = value;
-  if (!twin_json.is_null()) results["twin"] = twin_json;
-  results["status"] = storage::run_status_name(outcome.status);
-  if (outcome.status != storage::RunStatus::kComplete) results["reason"] = outcome.reason;
-  std::optional<bool> pass;
-  if (outcome.status == storage::RunStatus::kComplete) {
-    auto verdict = check_limits(parsed.limits, results);
-    pass = verdict.pass;
-    results["limit_checks"] = verdict.checks;
-    results["pass"] = pass ? nlohmann::json(*pass) : nlohmann::json();
-  }
-  write_results_if_possible(store, outcome.run_id, results);
-  try {
-    store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);
-  } catch (const std::exception& e) {
-    // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
-    // next start of a store marks it incomplete; the caller still learns the status here.
-    results["index_error"] = std::string("run index not updated: ") + e.what();
-  }
-
-#if WAVEBENCH_RUN_REPORT
-  if (request.report && !results.contains("results_error")) {
-    report_progress("report", 0.97);
-    try {
-      const auto report = report::write_run_report(paths.dir);
-      results["report"] = report.html.string();
-    } catch (const std::exception& e) {
-      results["report_error"] = e.what();
+    for (auto& [key, value] : procedure_result.json.items()) results[key] = value;
+    if (!twin_json.is_null()) results["twin"] = twin_json;
+    results["status"] = storage::run_status_name(outcome.status);
+    if (outcome.status != storage::RunStatus::kComplete) results["reason"] = outcome.reason;
+    std::optional<bool> pass;
+    if (outcome.status == storage::RunStatus::kComplete) {
+      auto verdict = check_limits(parsed.limits, results);
+      pass = verdict.pass;
+      results["limit_checks"] = verdict.checks;
+      results["pass"] = pass ? nlohmann::json(*pass) : nlohmann::json();
     }
     write_results_if_possible(store, outcome.run_id, results);
-  }
+    try {
+      store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);
+    } catch (const std::exception& e) {
+      // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
+      // next start of a store marks it incomplete; the caller still learns the status here.
+      results["index_error"] = std::string("run index not updated: ") + e.what();
+    }
+
+#if WAVEBENCH_RUN_REPORT
+    if (request.report && !results.contains("results_error")) {
+      report_progress("report", 0.97);
+      try {
+        const auto report = report::write_run_report(paths.dir);
+        results["report"] = report.html.string();
+      } catch (const std::exception& e) {
+        results["report_error"] = e.what();
+      }
+      write_results_if_possible(store, outcome.run_id, results);
+    }
 #endif
+  });
   outcome.results = std::move(results);
   report_progress("done", 1.0);
   return outcome;

@@ -14,6 +14,12 @@
 // SYNC index × SYNC period and SYNCs are produced as fast as the simulated devices answer, so a
 // run takes a fraction of its real duration; waits and timeouts given here are in bench time.
 //
+// Power (after ros2_control's inactive/active): a connected bench is inactive, i.e. the devices
+// are configured, SYNC, PDOs and heartbeats flow and every channel is readable, but the drive's
+// power stage is off (Switch On Disabled or Ready To Switch On) and the brake output is off.
+// The first motion command of a run (or activate()) enables the drive; deactivate(), which the
+// run executor calls when a run ends however it ends, switches it off again.
+//
 // Safety: a safety trigger (heartbeat lost, EMCY, Modbus link lost past its timeout, a limit
 // crossed, request_stop) puts the bench in its safe state at once (brake output to its safe
 // value, servo quick stop), moves the lifecycle to kFault with the reason, and makes the
@@ -62,6 +68,10 @@ struct AcquisitionStats {
   double sync_lateness_max_s = 0;
   double bench_time_s = 0;  // now()
   double real_time_s = 0;   // steady clock since connect()
+  // Heartbeats of the servo drive as the bench thread processed them, and the largest real-time
+  // gap between two of them: how long the event loop left them unread at worst.
+  std::uint64_t drive_heartbeats = 0;
+  double drive_heartbeat_gap_max_s = 0;
 };
 
 class Bench {
@@ -74,16 +84,27 @@ class Bench {
   virtual const BenchDescription& description() const noexcept = 0;
 
   // Boots the nodes (NMT), configures PDOs by SDO, arms heartbeat consumers, starts SYNC and
-  // acquisition, connects the brake (released), enables the drive. kUnconfigured -> kReady.
-  // Throws std::runtime_error naming the device and what failed.
+  // acquisition, connects the brake (output off) and leaves the drive disabled (Switch On
+  // Disabled): kUnconfigured -> kReady, inactive. Throws std::runtime_error naming the device
+  // and what failed.
   virtual void connect() = 0;
-  // Safe state, drive disabled, SYNC stopped. Never throws.
+  // A clean exit: brake output off, the brake controller's watchdog switched off (so a real
+  // controller does not latch its watchdog alarm), drive to Switch On Disabled, SYNC stopped,
+  // nodes to pre-operational. Never throws.
   virtual void disconnect() noexcept = 0;
   virtual BenchLifecycle state() const noexcept = 0;
   virtual std::string fault_reason() const = 0;
-  // kFault -> kReady: brake alarm reset, drive fault reset and re-enabled. Throws when the
-  // cause persists (e.g. heartbeat still missing).
+  // kFault -> kReady, inactive: brake alarm reset (output off), drive fault reset to Switch On
+  // Disabled (never enabled here). Throws when the cause persists (e.g. heartbeat still
+  // missing).
   virtual void clear_fault() = 0;
+  // Enables the drive (Operation Enabled) for motion; motion commands call it on their own.
+  // Throws like a motion command. (Added; the default does nothing.)
+  virtual void activate() {}
+  // Brake output off, drive power stage off (Ready To Switch On; Switch On Disabled after a
+  // trip, a drive in fault left in fault), the bench still connected and acquiring. Never
+  // throws. (Added; the default does nothing.)
+  virtual void deactivate() noexcept {}
 
   // Profile-position move of the input (motor) shaft to an absolute angle [rad, unwrapped],
   // at `speed` [rad/s of the input]; returns when the drive reports target reached.

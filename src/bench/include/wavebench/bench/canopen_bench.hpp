@@ -56,6 +56,8 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   BenchLifecycle state() const noexcept override { return lifecycle_.load(); }
   std::string fault_reason() const override;
   void clear_fault() override;
+  void activate() override;
+  void deactivate() noexcept override;
 
   void move_input_to(double theta_in_rad, double speed_rad_s) override;
   void run_input_velocity(double omega_in_rad_s) override;
@@ -99,6 +101,11 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   void make_brake_safe() noexcept;
   void quick_stop_drive() noexcept;
   void finish_safe_state() noexcept;
+  // Drive power stage off: to `target`, from wherever the drive is; a drive in fault stays
+  // there (its power stage is off; clearing it is the operator's reset).
+  void power_down_drive(canopen::Cia402State target) noexcept;
+  void release_brake_watchdog() noexcept;
+  void nodes_to_preoperational() noexcept;
 
   // Runs the event loop until done() or `timeout_s` of bench time; throws BenchAborted when
   // the bench trips (unless `tolerate_fault`).
@@ -141,6 +148,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::string reason_;
   bool tripped_ = false;
   bool quick_stop_pending_ = false;
+  bool powered_ = false;  // the drive was enabled and not yet powered down
 
   std::vector<SampleObserver*> observers_;
   storage::SyncSample latest_;
@@ -158,6 +166,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::uint64_t cycle_generation_ = 0;
   std::map<canopen::NodeId, double> last_heartbeat_;  // bench time, simulated clock
   std::map<canopen::NodeId, std::uint8_t> node_state_;
+  std::chrono::steady_clock::time_point last_drive_heartbeat_{};  // processed, real time
   std::optional<canopen::OperationMode> mode_;
 };
 
