@@ -3,6 +3,7 @@
 #include <sys/stat.h>
 
 #include <atomic>
+#include <chrono>
 #include <fstream>
 #include <future>
 #include <stdexcept>
@@ -188,11 +189,17 @@ TEST(LowPriorityReads, AnswersRefusesWhenAllAreBusyAndTurnsExceptionsInto500) {
   };
   std::thread a([&] { reads.run(hold); });
   std::thread b([&] { reads.run(hold); });
-  while (running < 2) std::this_thread::yield();
-  EXPECT_FALSE(reads.run([] { return ApiResponse{200, nullptr}; }).has_value());
+  // Both reads start right after the two above returned: a reader that had answered but not
+  // yet counted itself idle refused one of them once, and this loop then spun for ever.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (running < 2 && std::chrono::steady_clock::now() < deadline) std::this_thread::yield();
+  const bool both_running = running == 2;
+  const bool third_refused = !reads.run([] { return ApiResponse{200, nullptr}; }).has_value();
   release.set_value();
   a.join();
   b.join();
+  ASSERT_TRUE(both_running) << "a read was refused while a reader was free";
+  EXPECT_TRUE(third_refused);
   EXPECT_TRUE(reads.run([] { return ApiResponse{204, nullptr}; }).has_value());
 }
 

@@ -50,15 +50,19 @@ void LowPriorityReads::reader_main() {
     queue_.pop_front();
     --idle_;
     lock.unlock();
+    ApiResponse answer;
     try {
-      task->done.set_value((*task->read)());
+      answer = (*task->read)();
     } catch (const std::exception& e) {
-      task->done.set_value(api_error(500, "internal error", e.what()));
+      answer = api_error(500, "internal error", e.what());
     } catch (...) {
-      task->done.set_value(api_error(500, "internal error", "unknown exception"));
+      answer = api_error(500, "internal error", "unknown exception");
     }
+    // The reader counts as idle again before its caller learns the answer: a caller that
+    // starts its next read at once must not find this reader still busy and be refused.
     lock.lock();
     ++idle_;
+    task->done.set_value(std::move(answer));
   }
 }
 
