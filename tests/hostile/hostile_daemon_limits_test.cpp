@@ -102,15 +102,16 @@ TEST(HostileDaemonLimits, OverLimitStartsAre400AndNothingIsCreatedOrMoves) {
   ASSERT_TRUE(listed.ok());
   EXPECT_TRUE(listed.body["runs"].empty()) << listed.body.dump();
 
-  // Nothing moved: later samples, same input angle (the idle drive holds its position; the
-  // 628 rad the probe saw would be far outside this).
+  // Nothing moved: later samples, same input angle. The idle drive's power stage is off, so the
+  // shaft is free and may settle by a few milliradians (gear friction and twist relaxing); the
+  // 628 rad the probe saw, or one input turn, would be far outside this.
   LiveAngle after;
   for (int i = 0; i < 600 && after.seq < before.seq + 20; ++i) {
     after = newest_angle(client);
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   ASSERT_GE(after.seq, before.seq + 20) << "acquisition stopped";
-  EXPECT_NEAR(after.theta_in_rad, before.theta_in_rad, 1e-3);
+  EXPECT_NEAR(after.theta_in_rad, before.theta_in_rad, 2e-2);
   const auto status = client.get("/api/status");
   EXPECT_EQ(status.body.value("state", ""), "ready") << status.body.dump();
   std::printf(

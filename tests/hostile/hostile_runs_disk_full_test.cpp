@@ -70,7 +70,7 @@ TEST(HostileRunsDiskFull, ADynamicRunWhoseLogCannotBeWrittenIsTrippedAndEndsAbor
   std::string run_id;
   RunOutcome outcome;
   {
-    wavebench::testing::FileSizeLimit disk(storage::kSampleLogHeaderSize +
+    wavebench::testing::FileSizeLimit disk(storage::sample_log_header_size(0) +
                                            kRecordsThatFit * storage::kSampleLogRecordSize);
     outcome = execute_run(*bench, store, request, [&](const RunProgress& p) {
       if (run_id.empty()) {

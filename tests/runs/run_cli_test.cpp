@@ -54,6 +54,28 @@ TEST_F(RunCli, StaticOnTheSimulatedBenchPrintsTheSummaryAndWhereTheResultsAre) {
   EXPECT_EQ(results["status"], "complete");
 }
 
+// A bench config with an input-side CiA 406 encoder (configs/benches/sim-input-encoder.yaml):
+// the run records the extra channel, named in results.json and in the sample log's header.
+TEST_F(RunCli, AnInputSideEncoderInTheBenchConfigIsRecordedAsAChannel) {
+  const fs::path out = dir_ / "runs";
+  const fs::path config = fs::path(WAVEBENCH_SOURCE_DIR) / "configs/benches/sim-input-encoder.yaml";
+  const auto r = run("static --bench '" + config.string() + "' --out '" + out.string() +
+                     "' --positions 4 --loads 0 --window 0.1 --no-twin --no-report --quiet");
+  ASSERT_EQ(r.exit_code, 0) << r.output;
+  const auto at = r.output.find("results: ");
+  ASSERT_NE(at, std::string::npos) << r.output;
+  const fs::path results_path = r.output.substr(at + 9, r.output.find('\n', at) - at - 9);
+  std::ifstream in(results_path);
+  const auto results = nlohmann::json::parse(in);
+  ASSERT_EQ(results["extra_channels"].size(), 1u) << results.dump();
+  EXPECT_EQ(results["extra_channels"][0]["name"], "theta_in_encoder");
+  std::ifstream log(results_path.parent_path() / "samples.wbs", std::ios::binary);
+  std::string bytes((std::istreambuf_iterator<char>(log)), std::istreambuf_iterator<char>());
+  ASSERT_GT(bytes.size(), 72u + 48 * 7);
+  EXPECT_EQ(bytes[8], 2);  // version 2
+  EXPECT_EQ(std::string(bytes.c_str() + 72 + 48 * 6), "theta_in_encoder");
+}
+
 TEST_F(RunCli, BadOptionsExitTwoNamingKeyValueAndExpectationAndWriteNothing) {
   const fs::path out = dir_ / "runs";
   const std::string o = " --out '" + out.string() + "' --quiet";

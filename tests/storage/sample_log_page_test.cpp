@@ -96,7 +96,8 @@ TEST(SampleLogPage, StopsBeforeACorruptRecordAsTheFullReaderDoes) {
   const auto path = write_log(testing::fresh_test_dir(), 1000);
   {
     std::fstream f(path, std::ios::binary | std::ios::in | std::ios::out);
-    f.seekp(static_cast<std::streamoff>(kSampleLogHeaderSize + 500 * kSampleLogRecordSize + 30));
+    f.seekp(
+        static_cast<std::streamoff>(sample_log_header_size(0) + 500 * kSampleLogRecordSize + 30));
     f.put('\x7f');
   }
   const auto full = read_sample_log(path);
@@ -143,7 +144,7 @@ TEST(SampleLogPage, APageOfALargeLogReadsOnlyTheHeaderAndThePage) {
   constexpr std::uint64_t kRecords = 2'000'000;  // 192 MB
   const auto dir = testing::fresh_test_dir();
   const auto path = write_log(dir, kRecords);
-  ASSERT_EQ(fs::file_size(path), kSampleLogHeaderSize + kRecords * kSampleLogRecordSize);
+  ASSERT_EQ(fs::file_size(path), sample_log_header_size(0) + kRecords * kSampleLogRecordSize);
   const auto before = bytes_read_by_process();
   if (!before) GTEST_SKIP() << "no /proc/self/io to count the bytes read";
   const auto page = read_sample_log_page(path, 1'234'567, 100);
@@ -152,7 +153,7 @@ TEST(SampleLogPage, APageOfALargeLogReadsOnlyTheHeaderAndThePage) {
   const std::uint64_t read = *after - *before;
   std::printf("page of 100 records of %llu: %llu bytes read\n",
               static_cast<unsigned long long>(kRecords), static_cast<unsigned long long>(read));
-  EXPECT_LE(read, kSampleLogHeaderSize + 100 * kSampleLogRecordSize + 4096);
+  EXPECT_LE(read, sample_log_header_size(0) + 100 * kSampleLogRecordSize + 4096);
   EXPECT_EQ(page.total_records, kRecords);
   ASSERT_EQ(page.samples.size(), 100u);
   for (std::size_t i = 0; i < page.samples.size(); ++i) {
@@ -173,7 +174,7 @@ TEST(SampleLogWriter, AfterAFailedWriteItStopsWritingAndClosesWithoutThrowing) {
   std::uint64_t appended = 0;
   {
     // Room for the header and 25 records: the third flush fails part-way.
-    wavebench::testing::FileSizeLimit limit(kSampleLogHeaderSize + 25 * kSampleLogRecordSize);
+    wavebench::testing::FileSizeLimit limit(sample_log_header_size(0) + 25 * kSampleLogRecordSize);
     try {
       for (; appended < 100; ++appended) writer.append(make_sample(appended));
       FAIL() << "no write failed";

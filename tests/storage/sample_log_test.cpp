@@ -98,7 +98,7 @@ TEST(SampleLog, TornLastRecordIsIgnoredAndReported) {
     SampleLogWriter writer(path);
     for (std::uint64_t i = 0; i < 10; ++i) writer.append(make_sample(i));
   }
-  std::filesystem::resize_file(path, kSampleLogHeaderSize + 9 * kSampleLogRecordSize + 40);
+  std::filesystem::resize_file(path, sample_log_header_size(0) + 9 * kSampleLogRecordSize + 40);
   const auto log = read_sample_log(path);
   EXPECT_EQ(log.samples.size(), 9u);
   EXPECT_EQ(log.torn_tail_bytes, 40u);
@@ -114,7 +114,7 @@ TEST(SampleLog, CorruptRecordStopsReadingAndIsReported) {
   }
   {
     std::fstream f(path, std::ios::in | std::ios::out | std::ios::binary);
-    f.seekp(static_cast<std::streamoff>(kSampleLogHeaderSize + 6 * kSampleLogRecordSize + 30));
+    f.seekp(static_cast<std::streamoff>(sample_log_header_size(0) + 6 * kSampleLogRecordSize + 30));
     f.put('\x55');
   }
   const auto log = read_sample_log(path);

@@ -14,6 +14,7 @@
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/config/units.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
+#include "wavebench/storage/sync_sample.hpp"
 
 #ifndef WAVEBENCH_CONFIG_DIR
 #define WAVEBENCH_CONFIG_DIR "configs"
@@ -281,6 +282,79 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
   });
 }
 
+// `devices:`: channel name -> {kind, node, sign, the kind's keys}. Kinds come from the
+// registry (channel_device_registry.cpp), so a new kind needs no change here beyond its keys.
+void read_channel_devices(const YAML::Node& root, BenchConfig& c) {
+  optional(root, "devices", [&](const YAML::Node& n) {
+    if (!n.IsMap()) throw ConfigError("devices", scalar_text(n), "a mapping of channel names");
+    std::set<int> nodes{c.can.drive_node, c.can.encoder_node, c.can.torque_node};
+    for (const auto& item : n) {
+      ChannelDeviceSettings d;
+      d.channel = item.first.as<std::string>();
+      const std::string where = "devices." + d.channel;
+      try {
+        storage::check_extra_channels(std::vector<storage::ChannelInfo>{{d.channel, "rad"}});
+      } catch (const std::invalid_argument& e) {
+        throw ConfigError("devices", d.channel,
+                          "a channel name of [a-z0-9_], 1..31 bytes, "
+                          "not a core channel's (" +
+                              std::string(e.what()) + ")");
+      }
+      const YAML::Node& v = item.second;
+      if (!v.IsMap()) throw ConfigError(where, scalar_text(v), "a mapping with kind and node");
+      if (!v["kind"]) throw ConfigError(where + ".kind", "(missing)", "a device kind");
+      d.kind = text(v["kind"], where + ".kind");
+      const auto* kind = find_channel_device_kind(d.kind);
+      if (!kind) {
+        std::string list;
+        for (const auto& k : channel_device_kinds()) list += (list.empty() ? "" : ", ") + k.kind;
+        throw ConfigError(where + ".kind", d.kind, "one of " + list);
+      }
+      std::set<std::string> allowed{"kind", "node", "sign"};
+      allowed.insert(kind->keys.begin(), kind->keys.end());
+      check_keys(v, where, allowed);
+      if (!v["node"]) throw ConfigError(where + ".node", "(missing)", "a node id in [1, 127]");
+      d.node = static_cast<std::uint8_t>(integer(v["node"], where + ".node", 1, 127));
+      if (!nodes.insert(d.node).second)
+        throw ConfigError(where + ".node", std::to_string(d.node),
+                          "a node id no other device of the bench uses");
+      optional(v, "sign", [&](const YAML::Node& x) {
+        const long sign = integer(x, where + ".sign", -1, 1);
+        if (sign == 0) throw ConfigError(where + ".sign", "0", "1 or -1");
+        d.sign = static_cast<int>(sign);
+      });
+      optional(v, "counts_per_turn", [&](const YAML::Node& x) {
+        d.counts_per_turn =
+            static_cast<std::uint32_t>(integer(x, where + ".counts_per_turn", 2, 1L << 31));
+      });
+      optional(v, "turns", [&](const YAML::Node& x) {
+        d.turns = static_cast<std::uint32_t>(integer(x, where + ".turns", 1, 1L << 20));
+      });
+      optional(v, "object", [&](const YAML::Node& x) {
+        parse_object(text(x, where + ".object"), where + ".object", d.torque.index, d.torque.sub);
+      });
+      optional(v, "type", [&](const YAML::Node& x) {
+        const auto t = text(x, where + ".type");
+        const auto type = canopen::parse_value_type(t);
+        if (!type) throw ConfigError(where + ".type", t, "u8, u16, u32, i8, i16, i32, f32 or f64");
+        d.torque.type = *type;
+      });
+      optional(v, "scale", [&](const YAML::Node& x) {
+        d.torque.scale = number(x, where + ".scale", -1e9, 1e9);
+        if (d.torque.scale == 0) throw ConfigError(where + ".scale", "0", "a non-zero scale");
+      });
+      optional(v, "offset", [&](const YAML::Node& x) {
+        d.torque.offset = bounded_quantity(x, Dimension::kTorque, where + ".offset", -1e6, 1e6,
+                                           "a torque in [-1e6, 1e6] N*m");
+      });
+      if (c.devices.size() == storage::kMaxExtraChannels)
+        throw ConfigError("devices", std::to_string(n.size()) + " devices",
+                          "at most " + std::to_string(storage::kMaxExtraChannels));
+      c.devices.push_back(std::move(d));
+    }
+  });
+}
+
 void read_safety(const YAML::Node& n, SafetyLimits& l) {
   check_keys(n, "safety",
              {"max_input_speed", "max_brake_current", "max_brake_torque", "max_measured_torque",
@@ -366,12 +440,14 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
   c.brake.link.endpoint.port = 1502;
   try {
     const YAML::Node root = config::parse_config_yaml(yaml_text, source);
-    check_keys(root, "",
-               {"name", "unit_serial", "rated_torque", "gear", "sync_period", "clock", "twin_case",
-                "can", "drive", "encoder", "torque_sensor", "brake", "safety", "simulated"});
+    check_keys(
+        root, "",
+        {"name", "unit_serial", "rated_torque", "gear", "sync_period", "clock", "twin_case", "can",
+         "drive", "encoder", "torque_sensor", "devices", "brake", "safety", "simulated"});
     read_top(root, c, base_dir);
     optional(root, "can", [&](const YAML::Node& n) { read_can(n, c.can); });
     read_devices(root, c);
+    read_channel_devices(root, c);
     optional(root, "brake", [&](const YAML::Node& n) {
       try {
         c.brake = modbus::load_brake_config(n);

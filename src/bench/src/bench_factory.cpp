@@ -20,6 +20,9 @@ namespace {
 class ForwardingBench : public Bench {
  public:
   const BenchDescription& description() const noexcept override { return inner_->description(); }
+  std::vector<storage::ChannelInfo> extra_channels() const override {
+    return inner_->extra_channels();
+  }
   void connect() override { inner_->connect(); }
   void disconnect() noexcept override { inner_->disconnect(); }
   BenchLifecycle state() const noexcept override { return inner_->state(); }

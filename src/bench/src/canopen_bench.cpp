@@ -42,6 +42,12 @@ CanopenBench::CanopenBench(BenchConfig config, can::CanBus& bus)
       limits_check_(config_.description.limits, config_.description.sense),
       cycle_timer_(bus.context()) {
   config_.description.sense.validate();
+  for (const auto& d : config_.devices) {
+    const auto* kind = find_channel_device_kind(d.kind);
+    if (!kind)
+      throw std::invalid_argument("bench device '" + d.channel + "': unknown kind " + d.kind);
+    channel_devices_.push_back(kind->make(d));
+  }
   canopen::Master::Hooks hooks;
   hooks.on_heartbeat_lost = [this](canopen::NodeId n) {
     if (lifecycle_ != BenchLifecycle::kUnconfigured)
@@ -49,6 +55,8 @@ CanopenBench::CanopenBench(BenchConfig config, can::CanBus& bus)
            std::to_string(ms(config_.description.limits.heartbeat_timeout_s).count()) + " ms");
   };
   hooks.on_emcy = [this](const canopen::Emergency& e) {
+    for (auto& d : channel_devices_)
+      if (d->node() == e.node) d->on_emcy(e);
     if (e.is_reset()) return;
     trip("EMCY from node " + std::to_string(e.node) + " (" + node_name(e.node) + "): error code " +
          hex16(e.error_code) + " (" + canopen::describe_emcy_code(e.error_code) + ")");
@@ -71,7 +79,22 @@ std::string CanopenBench::node_name(canopen::NodeId node) const {
   if (node == config_.can.drive_node) return "servo drive";
   if (node == config_.can.encoder_node) return "output encoder";
   if (node == config_.can.torque_node) return "torque sensor";
+  for (const auto& d : channel_devices_)
+    if (d->node() == node) return d->describe();
   return "unknown node";
+}
+
+std::vector<canopen::NodeId> CanopenBench::all_nodes() const {
+  std::vector<canopen::NodeId> nodes{config_.can.drive_node, config_.can.encoder_node,
+                                     config_.can.torque_node};
+  for (const auto& d : channel_devices_) nodes.push_back(d->node());
+  return nodes;
+}
+
+std::vector<storage::ChannelInfo> CanopenBench::extra_channels() const {
+  std::vector<storage::ChannelInfo> channels;
+  for (const auto& d : channel_devices_) channels.push_back(d->channel());
+  return channels;
 }
 
 std::string CanopenBench::fault_reason() const {
@@ -164,7 +187,7 @@ void CanopenBench::connect_brake() {
 
 void CanopenBench::configure_nodes() {
   const auto& can = config_.can;
-  const std::uint8_t nodes[] = {can.drive_node, can.encoder_node, can.torque_node};
+  const auto nodes = all_nodes();
   auto step = [&](canopen::NodeId node, const std::string& what, const std::function<void()>& f) {
     try {
       f();
@@ -201,6 +224,7 @@ void CanopenBench::configure_nodes() {
     canopen::configure_pdo(master_->sdo(can.torque_node), PdoDirection::transmit, 1,
                            assembler_->torque_pdo(can.torque_node));
   });
+  configure_channel_devices();
   const auto period_us =
       static_cast<std::uint32_t>(std::lround(config_.description.sync_period_s * 1e6));
   const auto producer_ms = static_cast<std::uint16_t>(std::lround(can.heartbeat_producer_s * 1e3));
@@ -225,14 +249,25 @@ void CanopenBench::configure_nodes() {
                   [this](const can::Frame& f) { on_pdo(SampleAssembler::kEncoder, f); });
   master_->on_pdo(canopen::tpdo_cob_id(1, can.torque_node),
                   [this](const can::Frame& f) { on_pdo(SampleAssembler::kTorque, f); });
+  for (std::size_t i = 0; i < channel_devices_.size(); ++i)
+    master_->on_pdo(channel_devices_[i]->tpdo().cob_id,
+                    [this, i](const can::Frame& f) { on_extra_pdo(i, f); });
   subscriptions_.push_back(bus_.on_frame([this](const can::Frame& f) { on_heartbeat_frame(f); }));
 
   // Bus load: SYNC + the cycle's PDOs every period, heartbeats of three nodes.
   const double per_cycle =
       frame_bits(0) + frame_bits(6) + frame_bits(8) + frame_bits(4) +
       frame_bits(static_cast<unsigned>(canopen::size_of(config_.torque_sensor.sensor.type)));
-  const double heartbeats = 3 * frame_bits(1) / can.heartbeat_producer_s;
-  stats_.bus_load = (per_cycle / config_.description.sync_period_s + heartbeats) / can.bitrate;
+  double extra_bits = 0;
+  for (const auto& d : channel_devices_) {
+    unsigned bytes = 0;
+    for (const auto& e : d->tpdo().entries) bytes += e.bits / 8u;
+    extra_bits += frame_bits(bytes);
+  }
+  const double per_cycle_all = per_cycle + extra_bits;
+  const double heartbeats =
+      static_cast<double>(nodes.size()) * frame_bits(1) / can.heartbeat_producer_s;
+  stats_.bus_load = (per_cycle_all / config_.description.sync_period_s + heartbeats) / can.bitrate;
   if (stats_.bus_load > can.bus_load_warning) {
     spdlog::warn(
         "bench '{}': estimated CAN bus load {:.0f} % of {:.0f} kbit/s at a {} us SYNC "
@@ -242,11 +277,24 @@ void CanopenBench::configure_nodes() {
   }
 }
 
+void CanopenBench::configure_channel_devices() {
+  assembler_->expect_extra(channel_devices_.size());
+  for (auto& d : channel_devices_) {
+    auto& sdo = master_->sdo(d->node());
+    try {
+      d->configure(sdo);
+      canopen::configure_pdo(sdo, canopen::PdoDirection::transmit, 1, d->tpdo());
+    } catch (const std::exception& e) {
+      throw std::runtime_error(d->describe() + ": configure: " + e.what());
+    }
+    spdlog::info("bench '{}': {} records channel '{}' [{}]", config_.description.name,
+                 d->describe(), d->channel().name, d->channel().unit);
+  }
+}
+
 void CanopenBench::start_acquisition() {
   master_->nmt().send(canopen::NmtCommand::start, 0);
-  for (const auto node :
-       {config_.can.drive_node, config_.can.encoder_node, config_.can.torque_node})
-    last_heartbeat_[node] = now();
+  for (const auto node : all_nodes()) last_heartbeat_[node] = now();
   acquiring_ = true;
   if (config_.description.simulated_clock) {
     send_simulated_sync();
@@ -350,6 +398,20 @@ void CanopenBench::send_simulated_sync() noexcept {
   });
 }
 
+void CanopenBench::on_extra_pdo(std::size_t device, const can::Frame& frame) noexcept {
+  if (!assembler_ || !assembler_->open() ||
+      (!config_.description.simulated_clock && frame.timestamp.time_since_epoch().count() != 0 &&
+       frame.timestamp < sync_sent_wall_) ||
+      !assembler_->on_extra(device, channel_devices_[device]->on_pdo(frame))) {
+    ++stats_.late_frames;
+    return;
+  }
+  if (assembler_->all_frames()) {
+    finish_cycle();
+    if (config_.description.simulated_clock) send_simulated_sync();
+  }
+}
+
 void CanopenBench::on_pdo(unsigned which, const can::Frame& frame) noexcept {
   if (!assembler_ || !assembler_->open() ||
       (!config_.description.simulated_clock && frame.timestamp.time_since_epoch().count() != 0 &&
@@ -437,6 +499,13 @@ void CanopenBench::on_heartbeat_frame(const can::Frame& frame) noexcept {
   const auto hb = canopen::decode_heartbeat(frame);
   if (!hb || !last_heartbeat_.contains(hb->node)) return;
   last_heartbeat_[hb->node] = now();
+  for (auto& d : channel_devices_) {
+    if (d->node() != hb->node) continue;
+    if (hb->state == canopen::NmtState::boot_up)
+      d->on_boot();
+    else
+      d->on_heartbeat(static_cast<std::uint8_t>(hb->state));
+  }
   if (hb->node == config_.can.drive_node) {
     const auto processed = Clock::now();
     if (last_drive_heartbeat_ != Clock::time_point{}) {
@@ -574,9 +643,7 @@ void CanopenBench::clear_fault() {
     throw std::runtime_error("cannot clear the fault: brake controller: " + std::string(e.what()));
   }
   try {
-    for (const auto node :
-         {config_.can.drive_node, config_.can.encoder_node, config_.can.torque_node})
-      master_->nmt().send(canopen::NmtCommand::start, node);
+    for (const auto node : all_nodes()) master_->nmt().send(canopen::NmtCommand::start, node);
     finish_safe_state();
     // The fault reset is on the way to Switch On Disabled; the drive stays off until a run
     // needs it.

@@ -47,6 +47,8 @@ void SampleAssembler::begin(std::uint64_t sync_index, std::int64_t time_ns) {
   drive_.status_valid = false;
   drive_.following_error_valid = false;
   arrived_ = 0;
+  extra_arrived_ = 0;
+  sample_.extra_valid = 0;
   open_ = true;
 }
 
@@ -93,6 +95,16 @@ bool SampleAssembler::on_torque(const can::Frame& frame) {
   if (!torque_layout_.fits(frame) || !take(kTorque)) return false;
   sample_.torque_nm = torque_.torque_from_raw(torque_layout_.raw(frame, 0));
   sample_.flags |= storage::kTorqueValid;
+  return true;
+}
+
+bool SampleAssembler::on_extra(std::size_t i, std::optional<double> value) {
+  if (!open_ || i >= storage::kMaxExtraChannels || (extra_expected_ >> i & 1U) == 0 ||
+      (extra_arrived_ >> i & 1U) != 0 || !value)
+    return false;
+  extra_arrived_ |= 1U << i;
+  sample_.extra[i] = *value;
+  sample_.extra_valid |= 1U << i;
   return true;
 }
 

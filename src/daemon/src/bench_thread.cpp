@@ -75,6 +75,7 @@ void BenchThread::start() {
       std::lock_guard lock(mutex_);
       bench_ = bench.get();
       description_ = bench->description();
+      extra_channels_ = bench->extra_channels();
     }
     if (!description_->simulated_clock) {
       // SYNC from user space wakes late on an ordinary kernel (bench.md §1): ask for real-time
@@ -342,6 +343,7 @@ BenchStatus BenchThread::status() const {
   std::lock_guard lock(mutex_);
   BenchStatus s;
   s.description = description_;
+  s.extra_channels = extra_channels_;
   s.connect_error = connect_error_;
   s.run = run_;
   s.last_run = last_run_;

@@ -11,6 +11,7 @@
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 #include "wavebench/storage/atomic_file.hpp"
+#include "wavebench/storage/channel_info.hpp"
 #include "wavebench/storage/sample_csv.hpp"
 
 namespace wavebench::daemon {
@@ -241,6 +242,7 @@ int client_export(const ClientContext& ctx, const std::string& run_id,
     if (!detail.ok()) return refused(ctx, "export " + run_id, detail);
     // Every sample first, then the files: nothing half-written when the daemon goes away.
     std::vector<storage::SyncSample> samples;
+    std::vector<storage::ChannelInfo> extra;
     bool torn = false, corrupt = false;
     for (;;) {
       const auto page = client.get("/api/runs/" + url_encode(run_id) +
@@ -248,7 +250,15 @@ int client_export(const ClientContext& ctx, const std::string& run_id,
                                    "&limit=" + std::to_string(kExportPage));
       if (!page.ok()) return refused(ctx, "export " + run_id, page);
       const auto& list = page.body["samples"];
-      for (const auto& s : list) samples.push_back(sample_from_json(s));
+      if (samples.empty() && page.body.contains("channels") && page.body["channels"].is_array()) {
+        extra.clear();
+        for (const auto& c : page.body["channels"])
+          if (c.is_object() && c.value("extra", false) && extra.size() < storage::kMaxExtraChannels)
+            extra.push_back({c.value("name", std::string()), c.value("unit", std::string())});
+        // Names become CSV columns and JSON keys: a daemon's reply is checked like any input.
+        storage::check_extra_channels(extra);
+      }
+      for (const auto& s : list) samples.push_back(sample_from_json(s, extra));
       torn = page.body.value("torn_tail_bytes", 0) > 0;
       corrupt = page.body.value("corrupt", false);
       if (list.empty() || samples.size() >= page.body.value("total", std::size_t{0})) break;
@@ -258,11 +268,11 @@ int client_export(const ClientContext& ctx, const std::string& run_id,
     std::ostringstream text;
     std::filesystem::path samples_file;
     if (format == "csv") {
-      storage::write_samples_csv(samples, text);
+      storage::write_samples_csv(samples, text, extra);
       samples_file = dir / "samples.csv";
     } else {
       nlohmann::json array = nlohmann::json::array();
-      for (const auto& s : samples) array.push_back(sample_to_json(s));
+      for (const auto& s : samples) array.push_back(sample_to_json(s, extra));
       text << array.dump() << "\n";
       samples_file = dir / "samples.json";
     }

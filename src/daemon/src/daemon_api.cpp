@@ -390,13 +390,15 @@ ApiResponse DaemonApi::run_samples(const std::string& id, const HttpTarget& targ
   const auto page = storage::read_sample_log_page(path, from, static_cast<std::size_t>(limit));
   std::uint64_t gaps = 0, missed = 0, anomalies = 0, incomplete = 0;
   for (const auto& sample : page.samples) {
-    samples.push_back(sample_to_json(sample));
+    samples.push_back(sample_to_json(sample, page.header.extra_channels));
     gaps += (sample.flags & storage::kGapBefore) != 0 ? 1 : 0;
     missed += sample.missed_before;
     anomalies += (sample.flags & storage::kCounterAnomaly) != 0 ? 1 : 0;
     incomplete += sample.complete() ? 0 : 1;
   }
   j["total"] = page.total_records;
+  j["log_version"] = page.header.version;
+  j["channels"] = channels_to_json(page.header.extra_channels);
   j["samples"] = std::move(samples);
   j["torn_tail_bytes"] = page.torn_tail_bytes;
   j["corrupt"] = page.corrupt_record;
@@ -415,13 +417,18 @@ ApiResponse DaemonApi::live(const HttpTarget& target) const {
                        std::to_string(kMaxSampleLimit));
   }
   const auto slice = live_.since(since, static_cast<std::size_t>(limit));
+  const auto extra = bench_.status().extra_channels;
   nlohmann::json samples = nlohmann::json::array();
   for (const auto& s : slice.samples) {
-    auto j = sample_to_json(s.sample);
+    auto j = sample_to_json(s.sample, extra);
     j["seq"] = s.seq;
     samples.push_back(std::move(j));
   }
-  return {200, {{"next", slice.next_seq}, {"missed", slice.missed}, {"samples", samples}}};
+  return {200,
+          {{"next", slice.next_seq},
+           {"missed", slice.missed},
+           {"channels", channels_to_json(extra)},
+           {"samples", samples}}};
 }
 
 }  // namespace wavebench::daemon

@@ -35,7 +35,8 @@ T required(const nlohmann::json& json, const char* key) {
 
 }  // namespace
 
-nlohmann::json sample_to_json(const storage::SyncSample& sample) {
+nlohmann::json sample_to_json(const storage::SyncSample& sample,
+                              std::span<const storage::ChannelInfo> extra) {
   nlohmann::json j = {{"index", sample.index},
                       {"sync_counter", sample.sync_counter},
                       {"flags", sample.flags},
@@ -44,10 +45,26 @@ nlohmann::json sample_to_json(const storage::SyncSample& sample) {
   for (const auto& c : kChannels) {
     j[c.key] = sample.valid(c.flag) ? nlohmann::json(sample.*c.value) : nlohmann::json(nullptr);
   }
+  if (!extra.empty()) {
+    nlohmann::json e = nlohmann::json::object();
+    for (std::size_t i = 0; i < extra.size() && i < storage::kMaxExtraChannels; ++i)
+      e[extra[i].name] =
+          sample.extra_arrived(i) ? nlohmann::json(sample.extra[i]) : nlohmann::json(nullptr);
+    j["extra"] = std::move(e);
+  }
   return j;
 }
 
-storage::SyncSample sample_from_json(const nlohmann::json& json) {
+nlohmann::json channels_to_json(std::span<const storage::ChannelInfo> extra) {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& c : storage::core_channels())
+    list.push_back({{"name", c.name}, {"unit", c.unit}, {"extra", false}});
+  for (const auto& c : extra) list.push_back({{"name", c.name}, {"unit", c.unit}, {"extra", true}});
+  return list;
+}
+
+storage::SyncSample sample_from_json(const nlohmann::json& json,
+                                     std::span<const storage::ChannelInfo> extra) {
   if (!json.is_object()) {
     throw std::invalid_argument("sample: got " + json.dump() + ", expected an object");
   }
@@ -60,6 +77,16 @@ storage::SyncSample sample_from_json(const nlohmann::json& json) {
   for (const auto& c : kChannels) {
     const auto it = json.find(c.key);
     if (it != json.end() && it->is_number()) s.*c.value = it->get<double>();
+  }
+  const auto e = json.find("extra");
+  if (e != json.end() && e->is_object()) {
+    for (std::size_t i = 0; i < extra.size() && i < storage::kMaxExtraChannels; ++i) {
+      const auto v = e->find(extra[i].name);
+      if (v != e->end() && v->is_number()) {
+        s.extra[i] = v->get<double>();
+        s.extra_valid |= 1U << i;
+      }
+    }
   }
   return s;
 }

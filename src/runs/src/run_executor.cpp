@@ -138,8 +138,16 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
 #if WAVEBENCH_RUN_TWIN
   std::unique_ptr<twin::TwinBesideBench> twin_beside;
 #endif
+  const auto extra_channels = bench.extra_channels();
+  if (!extra_channels.empty()) {
+    nlohmann::json channels = nlohmann::json::array();
+    for (const auto& c : extra_channels) channels.push_back({{"name", c.name}, {"unit", c.unit}});
+    results["extra_channels"] = channels;
+  }
   try {
-    writer.emplace(paths.samples);
+    storage::SampleLogWriterOptions options;
+    options.extra_channels = extra_channels;
+    writer.emplace(paths.samples, options);
   } catch (const std::exception& e) {
     abort_with(std::string("sample log not created, nothing moved: ") + e.what());
   }

@@ -34,7 +34,8 @@ RunEstimate estimate_run(const RunPlan& plan, const bench::BenchDescription& ben
   const double period = bench.sync_period_s > 0 ? bench.sync_period_s : 1e-3;
   // Clamped: an absurd request must still give a number to refuse, not an overflow.
   e.samples = static_cast<std::uint64_t>(std::ceil(std::min(plan.bench_time_s / period, 1e15)));
-  e.sample_log_bytes = storage::kSampleLogHeaderSize + e.samples * storage::kSampleLogRecordSize;
+  e.sample_log_bytes =
+      storage::sample_log_header_size(0) + e.samples * storage::kSampleLogRecordSize;
   e.twin_bytes = twin ? e.samples * kTwinCsvBytesPerSample : 0;
   e.other_bytes = kRunMarginBytes;
   return e;

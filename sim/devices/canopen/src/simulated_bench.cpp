@@ -14,6 +14,7 @@ SimulatedBench::SimulatedBench(const SimulatedBenchConfig& config, can::CanBus& 
       torque_sensor_(config.torque_sensor, sink()),
       direction_sign_(config.gear.geometry.direction_sign < 0 ? -1 : 1),
       timer_(bus.context()) {
+  if (config.input_encoder) input_encoder_.emplace(*config.input_encoder, sink());
   plant_.set_brake_torque(config.brake_torque);
   observe_sensors();
 }
@@ -40,6 +41,7 @@ void SimulatedBench::start() {
   drive_.boot(now_);
   encoder_.boot(now_);
   torque_sensor_.boot(now_);
+  if (input_encoder_) input_encoder_->boot(now_);
   if (config_.clock == BenchClock::kRealTime) {
     t0_ = std::chrono::steady_clock::now() -
           std::chrono::duration_cast<std::chrono::steady_clock::duration>(
@@ -94,6 +96,7 @@ void SimulatedBench::handle(const can::Frame& frame) noexcept {
     drive_.receive(frame.id, payload, now_);
     encoder_.receive(frame.id, payload, now_);
     torque_sensor_.receive(frame.id, payload, now_);
+    if (input_encoder_) input_encoder_->receive(frame.id, payload, now_);
   } catch (...) {
     // A device model must never take the bus thread down; the frame is dropped.
   }
@@ -126,6 +129,7 @@ void SimulatedBench::advance_chunk(double dt) {
   drive_.advance_to(now_);
   encoder_.advance_to(now_);
   torque_sensor_.advance_to(now_);
+  if (input_encoder_) input_encoder_->advance_to(now_);
 }
 
 void SimulatedBench::observe_sensors() {
@@ -133,6 +137,8 @@ void SimulatedBench::observe_sensors() {
   drive_.observe(s);
   encoder_.observe(direction_sign_ * s.theta_out);
   torque_sensor_.observe(direction_sign_ * s.shaft_torque);
+  // The motor shaft turns in the bench's input direction whatever the gear's sense.
+  if (input_encoder_) input_encoder_->observe(s.theta_in);
 }
 
 }  // namespace wavebench::simdevices

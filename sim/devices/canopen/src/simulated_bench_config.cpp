@@ -95,8 +95,8 @@ void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
   read_integer(n, s, "serial_number", d.identity.serial_number, 0, 0xFFFFFFFFLL);
 }
 
-void read_encoder(const YAML::Node& n, EncoderConfig& e) {
-  const std::string s = "simbench.encoder";
+void read_encoder(const YAML::Node& n, EncoderConfig& e,
+                  const std::string& s = "simbench.encoder") {
   check_keys(n, s,
              {"node_id", "resolution", "revolutions", "noise_arcsec", "seed", "serial_number"});
   read_integer(n, s, "node_id", e.node_id, 1, 127);
@@ -173,7 +173,8 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
   const YAML::Node sb = root["simbench"];
   if (!sb) return base;
   check_keys(sb, "simbench",
-             {"clock", "sync_period_us", "brake_torque_nm", "drive", "encoder", "torque_sensor"});
+             {"clock", "sync_period_us", "brake_torque_nm", "drive", "encoder", "torque_sensor",
+              "input_encoder"});
   if (const YAML::Node c = sb["clock"]) {
     const std::string v = c.IsScalar() ? c.Scalar() : "";
     if (v == "realtime") {
@@ -193,11 +194,30 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
   if (const YAML::Node d = sb["drive"]) read_drive(d, base.drive);
   if (const YAML::Node e = sb["encoder"]) read_encoder(e, base.encoder);
   if (const YAML::Node t = sb["torque_sensor"]) read_torque_sensor(t, base.torque_sensor);
+  if (const YAML::Node e = sb["input_encoder"]) {
+    if (!base.input_encoder) {
+      EncoderConfig input;
+      input.node_id = 5;
+      input.identity.device_name = "WB-SIM input encoder";
+      input.identity.product_code = 0x00000A58;
+      input.revolutions = 1;  // single-turn on the fast shaft: it wraps every input turn
+      input.seed = 5;
+      base.input_encoder = input;
+    }
+    read_encoder(e, *base.input_encoder, "simbench.input_encoder");
+  }
   const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
   if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
     throw std::invalid_argument("simbench config: node ids " + std::to_string(ids[0]) + ", " +
                                 std::to_string(ids[1]) + ", " + std::to_string(ids[2]) +
                                 " (expected three different node ids)");
+  }
+  if (base.input_encoder &&
+      (base.input_encoder->node_id == ids[0] || base.input_encoder->node_id == ids[1] ||
+       base.input_encoder->node_id == ids[2])) {
+    throw std::invalid_argument(
+        "simbench.input_encoder.node_id: " + std::to_string(base.input_encoder->node_id) +
+        " (expected a node id no other simulated device uses)");
   }
   return base;
 }

@@ -31,8 +31,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "wavebench/bench/bench_description.hpp"
+#include "wavebench/storage/channel_info.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::bench {
@@ -82,6 +84,8 @@ class Bench {
   Bench& operator=(const Bench&) = delete;
 
   virtual const BenchDescription& description() const noexcept = 0;
+  // The channels beyond the six core ones, in SyncSample::extra order (the config's devices).
+  virtual std::vector<storage::ChannelInfo> extra_channels() const { return {}; }
 
   // Boots the nodes (NMT), configures PDOs by SDO, arms heartbeat consumers, starts SYNC and
   // acquisition, connects the brake (output off) and leaves the drive disabled (Switch On

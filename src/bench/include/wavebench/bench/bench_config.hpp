@@ -8,8 +8,10 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "wavebench/bench/bench_description.hpp"
+#include "wavebench/bench/channel_device.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
@@ -70,6 +72,8 @@ struct BenchConfig {
   EncoderSettings encoder;
   TorqueSensorSettings torque_sensor;
   modbus::BrakeClientConfig brake;
+  // Further CANopen devices, each recorded as an extra channel (`devices:`), in config order.
+  std::vector<ChannelDeviceSettings> devices;
   // The in-process simulated bench serves its brake on loopback with an ephemeral port and
   // sets brake.link.endpoint itself.
   std::optional<SimulatedSettings> simulated;

@@ -31,6 +31,7 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/bench/bench_config.hpp"
+#include "wavebench/bench/channel_device.hpp"
 #include "wavebench/bench/safety_limits_check.hpp"
 #include "wavebench/bench/sample_assembler.hpp"
 #include "wavebench/bench/sync_lateness_histogram.hpp"
@@ -51,6 +52,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   ~CanopenBench() override;
 
   const BenchDescription& description() const noexcept override { return config_.description; }
+  std::vector<storage::ChannelInfo> extra_channels() const override;
   void connect() override;
   void disconnect() noexcept override;
   BenchLifecycle state() const noexcept override { return lifecycle_.load(); }
@@ -92,6 +94,9 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   void stop_acquisition() noexcept;
   void begin_cycle(std::uint64_t index, std::int64_t time_ns);
   void on_pdo(unsigned which, const can::Frame& frame) noexcept;
+  void on_extra_pdo(std::size_t device, const can::Frame& frame) noexcept;
+  void configure_channel_devices();
+  std::vector<canopen::NodeId> all_nodes() const;
   void finish_cycle() noexcept;
   void send_simulated_sync() noexcept;
   void watch_heartbeats_in_bench_time() noexcept;
@@ -135,6 +140,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::unique_ptr<canopen::Cia406Encoder> encoder_;
   std::unique_ptr<canopen::TorqueSensor> torque_;
   std::unique_ptr<SampleAssembler> assembler_;
+  std::vector<std::unique_ptr<ChannelDevice>> channel_devices_;  // config.devices, in order
   SafetyLimitsCheck limits_check_;
   std::vector<can::CanBus::Subscription> subscriptions_;
 

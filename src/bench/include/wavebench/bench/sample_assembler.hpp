@@ -44,7 +44,13 @@ class SampleAssembler {
   bool on_drive_velocity(const can::Frame& frame);
   bool on_encoder(const can::Frame& frame);
   bool on_torque(const can::Frame& frame);
-  bool all_frames() const noexcept { return arrived_ == kAllFrames; }
+  // The bench's channel devices: `count` extra channels, each from its own TPDO.
+  void expect_extra(std::size_t count) noexcept { extra_expected_ = (1U << count) - 1U; }
+  // Extra channel `i`'s TPDO of the open cycle, decoded by its device (nullopt: malformed).
+  bool on_extra(std::size_t i, std::optional<double> value);
+  bool all_frames() const noexcept {
+    return arrived_ == kAllFrames && extra_arrived_ == extra_expected_;
+  }
   void set_brake(double current_a, double torque_nm);
   // Closes the cycle and returns its sample.
   const storage::SyncSample& finish();
@@ -68,6 +74,8 @@ class SampleAssembler {
   storage::SyncSample sample_;
   DriveCycleValues drive_;
   unsigned arrived_ = 0;
+  std::uint32_t extra_expected_ = 0;
+  std::uint32_t extra_arrived_ = 0;
   bool open_ = false;
 };
 

@@ -44,6 +44,7 @@ struct BenchStatus {
   std::string fault_reason;
   std::string connect_error;  // why the bench is idle, when connecting failed
   std::optional<bench::BenchDescription> description;
+  std::vector<storage::ChannelInfo> extra_channels;  // the bench's, in SyncSample::extra order
   std::optional<ActiveRun> run;
   std::optional<FinishedRun> last_run;
   std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
@@ -122,6 +123,7 @@ class BenchThread {
   bool started_ = false;
   bench::Bench* bench_ = nullptr;  // set and cleared under mutex_; used only on the bench thread
   std::optional<bench::BenchDescription> description_;
+  std::vector<storage::ChannelInfo> extra_channels_;
   std::string connect_error_;
   std::optional<ActiveRun> run_;
   bool run_queued_ = false;

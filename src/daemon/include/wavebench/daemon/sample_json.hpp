@@ -3,13 +3,20 @@
 // The client turns it back into a SyncSample for export.
 
 #include <nlohmann/json.hpp>
+#include <span>
 
+#include "wavebench/storage/channel_info.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::daemon {
 
-nlohmann::json sample_to_json(const storage::SyncSample& sample);
+// The bench's extra channels go under "extra", keyed by their names (null when not arrived).
+nlohmann::json sample_to_json(const storage::SyncSample& sample,
+                              std::span<const storage::ChannelInfo> extra = {});
 // Throws std::invalid_argument naming the key when a field is missing or of the wrong type.
-storage::SyncSample sample_from_json(const nlohmann::json& json);
+storage::SyncSample sample_from_json(const nlohmann::json& json,
+                                     std::span<const storage::ChannelInfo> extra = {});
+// {"name", "unit"} of the core and the extra channels, for the API's "channels" lists.
+nlohmann::json channels_to_json(std::span<const storage::ChannelInfo> extra);
 
 }  // namespace wavebench::daemon

@@ -1,9 +1,14 @@
 #pragma once
 // Append-only binary log of SyncSamples, one file per run, written as acquired.
 //
-// Layout (little-endian): a 64-byte header, then fixed-size 96-byte records. A record carries
-// its own checksum, so the reader keeps every complete record after a crash and ignores (and
-// reports) a torn last one. Version 1:
+// Layout (little-endian; docs/sample-log.md is the written schema). Version 2 (written):
+//   header: the 64-byte prologue of version 1 (version 2, its header_size and record_size),
+//           then the channel table: u32 channel_count | u32 0 | channel_count x (32-byte name,
+//           16-byte unit, NUL-padded) | u32 FNV-1a of the table | u32 0. The first six
+//           channels are the core ones (core_channels()); the rest are the bench's extra ones.
+//   record: as version 1 up to missed_before (76 bytes) | u32 extra_valid | one f64 per extra
+//           channel | 12 bytes zero | u32 FNV-1a of the bytes before it (96 + 8 x extras bytes)
+// Version 1 (still read): a 64-byte header, then fixed-size 96-byte records:
 //   header: magic "WBSAMPL1" | u32 version | u32 header_size | u32 record_size |
 //           u32 counter_first | u32 counter_last | u32 pad | i64 created_ns | 24 bytes zero |
 //           u32 FNV-1a of the bytes before it
@@ -17,23 +22,32 @@
 #include <string>
 #include <vector>
 
+#include "wavebench/storage/channel_info.hpp"
 #include "wavebench/storage/sync_gap_counter.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::storage {
 
-inline constexpr std::uint32_t kSampleLogVersion = 1;
-inline constexpr std::size_t kSampleLogHeaderSize = 64;
-inline constexpr std::size_t kSampleLogRecordSize = 96;
+inline constexpr std::uint32_t kSampleLogVersion = 2;
+inline constexpr std::size_t kSampleLogPrologueSize = 64;
+inline constexpr std::size_t kSampleLogRecordSize = 96;  // version 1; version 2 without extras
 
 struct SampleLogHeader {
   std::uint32_t version = kSampleLogVersion;
   SyncCounterRange counter_range;
-  std::int64_t created_ns = 0;  // CLOCK_REALTIME when the log was created
+  std::int64_t created_ns = 0;              // CLOCK_REALTIME when the log was created
+  std::vector<ChannelInfo> extra_channels;  // named in the header (version 2)
+  // Sizes as the file states them (set by the reader; the writer derives them).
+  std::size_t header_size = 0;
+  std::size_t record_size = 0;
 };
+
+std::size_t sample_log_header_size(std::size_t extra_channels);
+std::size_t sample_log_record_size(std::size_t extra_channels);
 
 struct SampleLogWriterOptions {
   SyncCounterRange counter_range;
+  std::vector<ChannelInfo> extra_channels;        // SyncSample::extra[0..n), checked
   std::size_t flush_every_records = 100;          // write(2) at least this often ...
   std::chrono::milliseconds flush_interval{100};  // ... and at least this often
   std::size_t checkpoint_every_records = 1000;    // fdatasync(2); 0 = only on checkpoint()
@@ -77,6 +91,7 @@ class SampleLogWriter {
   SampleLogWriterOptions options_;
   SyncGapCounter gaps_;
   int fd_ = -1;
+  std::size_t record_size_ = kSampleLogRecordSize;
   std::vector<unsigned char> buffer_;
   std::uint64_t next_index_ = 0;
   std::uint64_t flushed_ = 0;
@@ -120,8 +135,10 @@ inline constexpr std::size_t kMaxSampleLogPageRecords = std::size_t{1} << 20;  /
 SampleLogPage read_sample_log_page(const std::filesystem::path& path, std::uint64_t from,
                                    std::size_t count);
 
-// Encoding, exposed for tests and tools that check the bytes.
+// Encoding, exposed for tests and tools that check the bytes. Version 1 when header.version
+// is 1 (then without extra channels), else version 2.
 std::vector<unsigned char> encode_sample_log_header(const SampleLogHeader& header);
-std::vector<unsigned char> encode_sample_record(const SyncSample& sample);
+std::vector<unsigned char> encode_sample_record(const SyncSample& sample,
+                                                std::size_t extra_channels = 0);
 
 }  // namespace wavebench::storage

@@ -2,6 +2,8 @@
 // One SYNC cycle of the bench (bench.md §1): the values that followed one SYNC, with the
 // receive timestamp and SYNC counter kept so that spectra never assume a uniform period.
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 
 namespace wavebench::storage {
@@ -22,6 +24,10 @@ enum SampleFlag : std::uint32_t {
   kCounterAnomaly = 1u << 17,
 };
 
+// Channels a bench config adds beyond the six above (an input-side encoder, a second torque
+// sensor...), by position in the bench's channel list; the sample log's header names them.
+inline constexpr std::size_t kMaxExtraChannels = 8;
+
 struct SyncSample {
   std::uint64_t index = 0;         // position in the log, assigned on append
   std::uint32_t sync_counter = 0;  // as received (CiA 301 0x1019 counter, 1..overflow)
@@ -34,8 +40,13 @@ struct SyncSample {
   double brake_current_a = 0;
   double brake_torque_nm = 0;
   std::uint32_t missed_before = 0;  // SYNC cycles missed between the previous sample and this
+  std::array<double, kMaxExtraChannels> extra{};  // the bench's extra channels, SI
+  std::uint32_t extra_valid = 0;                  // bit i: extra[i] arrived in this cycle
 
   bool valid(SampleFlag channel) const { return (flags & channel) != 0; }
+  bool extra_arrived(std::size_t i) const {
+    return i < kMaxExtraChannels && (extra_valid >> i) & 1U;
+  }
   bool complete() const { return (flags & kAllChannelsValid) == kAllChannelsValid; }
 };
 

@@ -11,6 +11,7 @@
 #include <chrono>
 #include <functional>
 #include <memory>
+#include <optional>
 
 #include "wavebench/can/can_bus.hpp"
 #include "wavebench/model/gear_params.hpp"
@@ -28,6 +29,8 @@ struct SimulatedBenchConfig {
   ServoDriveConfig drive;
   EncoderConfig encoder;
   TorqueSensorConfig torque_sensor;
+  // A CiA 406 encoder on the input (motor) shaft as its own node; absent by default.
+  std::optional<EncoderConfig> input_encoder;
   BenchClock clock = BenchClock::kSyncDriven;
   double sync_period = 1e-3;  // [s] sync-driven step while the drive's 0x1006 is 0
   double tick = 1e-3;         // [s] real-time timer period
@@ -57,6 +60,7 @@ class SimulatedBench {
 
   Cia402ServoDrive& drive() noexcept { return drive_; }
   Cia406Encoder& encoder() noexcept { return encoder_; }
+  Cia406Encoder* input_encoder() noexcept { return input_encoder_ ? &*input_encoder_ : nullptr; }
   TorqueSensor& torque_sensor() noexcept { return torque_sensor_; }
   SimulatedBenchPlant& plant() noexcept { return plant_; }
   const SimulatedBenchConfig& config() const noexcept { return config_; }
@@ -79,6 +83,7 @@ class SimulatedBench {
   Cia402ServoDrive drive_;
   Cia406Encoder encoder_;
   TorqueSensor torque_sensor_;
+  std::optional<Cia406Encoder> input_encoder_;
   BrakeCoupling brake_coupling_;
   double now_ = 0;
   int direction_sign_ = 1;

@@ -13,6 +13,8 @@
 //     encoder: {node_id: 3, resolution: 1048576, revolutions: 2048, noise_arcsec: 0.5, seed: 3}
 //     torque_sensor: {node_id: 4, object: "0x6130:1", type: i32, scale: 0.001,
 //                     noise_nm: 0.02, offset_nm: 0, seed: 4}
+//     input_encoder: {node_id: 5, resolution: 1048576, revolutions: 1, noise_arcsec: 0.5,
+//                     seed: 5}   # absent: no input-side encoder (seed 004's bench has one)
 //
 // The gear's "true" parameters are not here: the CLI takes them from a twin-case file.
 
