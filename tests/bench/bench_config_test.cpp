@@ -99,6 +99,26 @@ TEST(BenchConfig, ErrorsNameKeyValueAndExpectation) {
   EXPECT_NE(std::string(e.what()).find("link.endpoint"), std::string::npos) << e.what();
 }
 
+// The quick stop's confirmation time: 50 ms by default, any time unit, refused when 0, negative,
+// above 10 s or not a time.
+TEST(BenchConfig, QuickStopTimeoutTakesATime) {
+  EXPECT_DOUBLE_EQ(default_simulated_bench_config().can.quick_stop_timeout_s, 0.05);
+  EXPECT_DOUBLE_EQ(
+      parse_bench_config("can: {quick_stop_timeout: \"20 ms\"}\n", kConfigs / "benches", "t.yaml")
+          .can.quick_stop_timeout_s,
+      0.02);
+  EXPECT_DOUBLE_EQ(
+      parse_bench_config("can: {quick_stop_timeout: 0.1}\n", kConfigs / "benches", "t.yaml")
+          .can.quick_stop_timeout_s,
+      0.1);
+  for (const char* bad : {"0", "\"-5 ms\"", "\"11 s\"", "\"5 N*m\"", "soon"}) {
+    const auto e = parse_error(std::string("can: {quick_stop_timeout: ") + bad + "}\n");
+    EXPECT_EQ(e.key(), "can.quick_stop_timeout") << bad;
+  }
+  const auto e = parse_error("can: {quick_stop_timeout: \"11 s\"}\n");
+  EXPECT_NE(e.expected().find("(0, 10 s]"), std::string::npos) << e.expected();
+}
+
 // The simulated unit's truth is the twin's nominal case varied (TE x1.08 and +4 deg, stiffness
 // x0.96, backlash 0.35 arcmin), and a variation in the config varies it further.
 TEST(BenchConfig, TrueGearIsTheNominalCaseVaried) {

@@ -85,6 +85,44 @@ TEST_F(Cia402DriveTest, QuickStopOptionTwoEndsInSwitchOnDisabled) {
   EXPECT_EQ(statusword() & 0x4F, 0x40);
 }
 
+// The bench's quick stop on a trip: controlword 0x0002 in RPDO1 (event-driven by default),
+// taken on reception, no SYNC needed.
+TEST_F(Cia402DriveTest, QuickStopInRpdoOneActsOnReception) {
+  send(0x000, {0x01, 0x01});
+  enable();
+  send(0x201, {0x02, 0x00});
+  EXPECT_EQ(bench->drive().state(), Cia402State::kQuickStopActive);
+  EXPECT_EQ(statusword() & 0x6F, 0x07);
+}
+
+// NMT stop, the bench's fallback when a quick stop goes unconfirmed: the drive reacts as its
+// abort connection option code 0x6007 says (2 by default: power stage off at once).
+TEST_F(Cia402DriveTest, NmtStopAppliesTheAbortConnectionOption) {
+  EXPECT_EQ(bench->drive().od().get<std::int16_t>(0x6007, 0), 2);
+  struct Case {
+    std::uint16_t option;
+    Cia402State after;
+  };
+  for (const auto& c :
+       {Case{0, Cia402State::kOperationEnabled}, Case{1, Cia402State::kFault},
+        Case{2, Cia402State::kSwitchOnDisabled}, Case{3, Cia402State::kQuickStopActive}}) {
+    send(0x000, {0x81, 0x01});  // reset node: defaults, switch on disabled
+    send(0x000, {0x01, 0x01});
+    write_u16(0x6007, c.option);
+    enable();
+    send(0x000, {0x02, 0x01});
+    EXPECT_EQ(bench->drive().nmt_state(), NmtState::kStopped);
+    advance(0.001);
+    EXPECT_EQ(bench->drive().state(), c.after)
+        << "option " << c.option << ": " << to_string(bench->drive().state());
+  }
+  // Out of the code's range: refused like any value out of range.
+  send(0x000, {0x01, 0x01});
+  const auto r = exchange(0x601, {0x2B, 0x07, 0x60, 0x00, 4, 0, 0, 0});
+  ASSERT_EQ(r.size(), 1u);
+  EXPECT_EQ(r[0].data[0], 0x80);
+}
+
 TEST_F(Cia402DriveTest, FaultSendsEmcyAndNeedsAResetEdge) {
   send(0x000, {0x01, 0x01});
   enable();

@@ -179,7 +179,7 @@ void read_top(const YAML::Node& root, BenchConfig& c, const std::filesystem::pat
 void read_can(const YAML::Node& n, CanSettings& can) {
   check_keys(n, "can",
              {"interface", "bitrate", "sdo_timeout", "heartbeat_producer", "nodes",
-              "bus_load_warning", "cycle_timeout"});
+              "bus_load_warning", "cycle_timeout", "quick_stop_timeout"});
   optional(n, "interface", [&](const YAML::Node& v) {
     can.interface = text(v, "can.interface");
     if (can.interface.empty())
@@ -203,6 +203,11 @@ void read_can(const YAML::Node& n, CanSettings& can) {
     can.cycle_timeout_s = quantity(v, Dimension::kTime, "can.cycle_timeout");
     if (can.cycle_timeout_s <= 0)
       throw ConfigError("can.cycle_timeout", scalar_text(v), "a time > 0");
+  });
+  optional(n, "quick_stop_timeout", [&](const YAML::Node& v) {
+    can.quick_stop_timeout_s = quantity(v, Dimension::kTime, "can.quick_stop_timeout");
+    if (!(can.quick_stop_timeout_s > 0) || can.quick_stop_timeout_s > 10)
+      throw ConfigError("can.quick_stop_timeout", scalar_text(v), "a time in (0, 10 s]");
   });
   optional(n, "nodes", [&](const YAML::Node& v) {
     check_keys(v, "can.nodes", {"drive", "encoder", "torque_sensor"});

@@ -95,6 +95,7 @@ class InProcessSimulatedBench final : public ForwardingBench, public SimulatedBe
   simdevices::SimulatedBench& devices() override { return *devices_; }
   simdevices::BrakeServer& brake_server() override { return *brake_; }
   CanopenBench& canopen() override { return *inner_; }
+  can::VirtualCanBus& virtual_bus() override { return *virtual_bus_; }
 
  private:
   BenchConfig config_;

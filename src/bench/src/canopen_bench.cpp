@@ -220,6 +220,21 @@ void CanopenBench::configure_nodes() {
     canopen::configure_pdo(master_->sdo(can.encoder_node), PdoDirection::transmit, 1,
                            SampleAssembler::encoder_pdo(can.encoder_node));
   });
+  step(can.drive_node, "RPDO1 (controlword: the quick stop's path)", [&] {
+    canopen::configure_pdo(master_->sdo(can.drive_node), PdoDirection::receive, kQuickStopRpdo,
+                           quick_stop_rpdo(can.drive_node));
+  });
+  // 0x6007 is optional (CiA 402): where present, an NMT stop (the quick stop's fallback) disables
+  // the drive's voltage.
+  std::error_code abort_option_ec;
+  master_->sdo(can.drive_node)
+      .write<std::int16_t>(0x6007, 0, kAbortConnectionDisableVoltage, abort_option_ec);
+  if (abort_option_ec) {
+    spdlog::warn(
+        "bench '{}': servo drive (node {}): abort connection option 0x6007 not set ({}): an NMT "
+        "stop after an unconfirmed quick stop may leave its power stage on",
+        config_.description.name, can.drive_node, abort_option_ec.message());
+  }
   step(can.torque_node, "TPDO1 (torque)", [&] {
     canopen::configure_pdo(master_->sdo(can.torque_node), PdoDirection::transmit, 1,
                            assembler_->torque_pdo(can.torque_node));
@@ -472,6 +487,7 @@ void CanopenBench::finish_cycle() noexcept {
       // The supervisor decides when the link is lost; a missed beat is the watchdog's business.
     }
   }
+  if (quick_stop_watch_.pending()) watch_quick_stop();
   if (tripped_) return;
   if (config_.description.simulated_clock) watch_heartbeats_in_bench_time();
   if (tripped_) return;
@@ -538,8 +554,8 @@ void CanopenBench::trip(const std::string& reason) noexcept {
   }
   lifecycle_ = BenchLifecycle::kFault;
   spdlog::error("bench '{}' tripped: {}", config_.description.name, reason);
+  quick_stop_drive();  // a frame on the bus, first: the brake's write waits for its answer
   make_brake_safe();
-  quick_stop_drive();
 }
 
 void CanopenBench::make_brake_safe() noexcept {
@@ -558,24 +574,56 @@ void CanopenBench::make_brake_safe() noexcept {
 
 void CanopenBench::quick_stop_drive() noexcept {
   if (!drive_ || !acquiring_) return;
-  quick_stop_pending_ = true;
-  // Asynchronous: a trip may come from a handler while a blocking SDO call is in progress.
-  master_->sdo(config_.can.drive_node)
-      .async_download(0x6040, 0, {0x02, 0x00}, [this, alive = alive_](std::error_code ec) {
-        if (!*alive) return;
-        quick_stop_pending_ = false;
-        if (ec) {
-          spdlog::error("bench '{}': quick stop of the servo drive failed: {}",
-                        config_.description.name, ec.message());
-        }
-      });
+  // On the bus now, beside whatever SDO transfer is in flight (quick_stop_watch.hpp).
+  std::error_code ec;
+  bus_.send(quick_stop_frame(config_.can.drive_node), ec);
+  if (ec) {
+    spdlog::error("bench '{}': quick-stop RPDO to the servo drive not sent: {}",
+                  config_.description.name, ec.message());
+  }
+  quick_stop_watch_.start(now(), config_.can.quick_stop_timeout_s);
+}
+
+void CanopenBench::watch_quick_stop() noexcept {
+  const auto statusword =
+      latest_drive_.status_valid ? std::optional(latest_drive_.statusword) : std::nullopt;
+  switch (quick_stop_watch_.on_cycle(now(), statusword)) {
+    case QuickStopWatch::Verdict::kConfirmed:
+      spdlog::info("bench '{}': servo drive stopped: {}", config_.description.name,
+                   canopen::describe_statusword(*statusword));
+      break;
+    case QuickStopWatch::Verdict::kTimedOut:
+      stop_drive_by_nmt();
+      break;
+    default:
+      break;
+  }
+}
+
+void CanopenBench::stop_drive_by_nmt() noexcept {
+  std::error_code ec;
+  master_->nmt().send(canopen::NmtCommand::stop, config_.can.drive_node, ec);
+  const auto last = quick_stop_watch_.last_statusword();
+  const std::string why =
+      "the servo drive did not show the quick stop within " +
+      std::to_string(ms(config_.can.quick_stop_timeout_s).count()) + " ms (" +
+      (last ? canopen::describe_statusword(*last) : std::string("no statusword received")) +
+      "): NMT stop sent to node " + std::to_string(config_.can.drive_node);
+  spdlog::error("bench '{}': {}{}", config_.description.name, why,
+                ec ? " but not delivered: " + ec.message() : std::string());
+  std::lock_guard lock(reason_mutex_);
+  reason_ += "; " + why + (ec ? " (send failed: " + ec.message() + ")" : "");
 }
 
 void CanopenBench::finish_safe_state() noexcept {
-  const auto deadline =
-      Clock::now() +
-      std::chrono::milliseconds(static_cast<long>(config_.can.sdo_timeout_s * 2e3) + 100);
-  while (quick_stop_pending_ && Clock::now() < deadline) run_once();
+  // The watch counts bench time, which stands still when the loop's cycles stall: this
+  // real-time bound sends the NMT stop itself then.
+  const auto deadline = Clock::now() + ms(config_.can.quick_stop_timeout_s + 0.5);
+  while (quick_stop_watch_.pending() && Clock::now() < deadline) run_once();
+  if (quick_stop_watch_.pending()) {
+    stop_drive_by_nmt();
+    quick_stop_watch_.reset();
+  }
 }
 
 void CanopenBench::request_stop(const std::string& reason) noexcept {
@@ -662,7 +710,7 @@ void CanopenBench::clear_fault() {
     reason_.clear();
   }
   tripped_ = false;
-  quick_stop_pending_ = false;
+  quick_stop_watch_.reset();
   lifecycle_ = BenchLifecycle::kReady;
   spdlog::info("bench '{}': fault cleared", config_.description.name);
 }
@@ -903,6 +951,11 @@ AcquisitionStats CanopenBench::acquisition_stats() const {
       s.sync_skipped = producer->statistics().skipped;
     }
   }
+  if (latest_drive_.status_valid) {
+    s.drive_statusword = latest_drive_.statusword;
+    s.drive_state = canopen::to_string(canopen::decode_state(latest_drive_.statusword));
+  }
+  if (const auto brake = fresh_brake_readback()) s.brake_output_on = brake->status.output_on;
   s.sync_lateness_p50_s = lateness_.percentile(0.5);
   s.sync_lateness_p99_s = lateness_.percentile(0.99);
   s.sync_lateness_max_s = lateness_.max();

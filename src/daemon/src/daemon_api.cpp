@@ -80,7 +80,13 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"sync_lateness_p99_s", a.sync_lateness_p99_s},
           {"sync_lateness_max_s", a.sync_lateness_max_s},
           {"bench_time_s", a.bench_time_s},
-          {"real_time_s", a.real_time_s}};
+          {"real_time_s", a.real_time_s},
+          {"drive_statusword",
+           a.drive_statusword ? nlohmann::json(*a.drive_statusword) : nlohmann::json(nullptr)},
+          {"drive_state",
+           a.drive_state.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.drive_state)},
+          {"brake_output_on",
+           a.brake_output_on ? nlohmann::json(*a.brake_output_on) : nlohmann::json(nullptr)}};
 }
 
 }  // namespace

@@ -292,7 +292,10 @@ void CanopenNode::handle_nmt(std::span<const std::uint8_t> data, double now) {
       nmt_state_ = NmtState::kOperational;
       break;
     case 0x02:
-      nmt_state_ = NmtState::kStopped;
+      if (nmt_state_ != NmtState::kStopped) {
+        nmt_state_ = NmtState::kStopped;
+        on_nmt_stopped();
+      }
       break;
     case 0x80:
       nmt_state_ = NmtState::kPreOperational;

@@ -68,6 +68,11 @@ void Cia402ServoDrive::add_profile_objects() {
   d.add_value<std::uint16_t>(0x6040, 0, "controlword", DT::kUnsigned16, A::kReadWrite, 0, true)
       .after_write = [this] { on_controlword(); };
   d.add_value<std::uint16_t>(0x6041, 0, "statusword", DT::kUnsigned16, A::kReadOnly, 0, true);
+  auto& abort_option =
+      d.add_value<std::int16_t>(0x6007, 0, "abort connection option code", DT::kInteger16,
+                                A::kReadWrite, c.abort_connection_option);
+  abort_option.min = 0;
+  abort_option.max = 3;
   auto& qs = d.add_value<std::int16_t>(0x605A, 0, "quick stop option code", DT::kInteger16,
                                        A::kReadWrite, c.quick_stop_option);
   qs.min = 0;
@@ -168,6 +173,24 @@ void Cia402ServoDrive::on_reset_application() {
   profile_.reset(actual_position_, 0);
   pp_target_ = csp_from_ = csp_to_ = actual_position_;
   od().set<std::uint16_t>(0x6041, 0, statusword());
+}
+
+void Cia402ServoDrive::on_nmt_stopped() {
+  switch (od().get<std::int16_t>(0x6007, 0)) {
+    case 1:
+      inject_fault(0x8130);  // life guard / heartbeat error: the communication is gone
+      break;
+    case 2:
+      od().set<std::uint16_t>(0x6040, 0, 0x0000);  // disable voltage
+      on_controlword();
+      break;
+    case 3:
+      od().set<std::uint16_t>(0x6040, 0, 0x0002);  // quick stop
+      on_controlword();
+      break;
+    default:
+      break;
+  }
 }
 
 void Cia402ServoDrive::on_mode_change() {

@@ -29,6 +29,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -74,6 +75,12 @@ struct AcquisitionStats {
   // gap between two of them: how long the event loop left them unread at worst.
   std::uint64_t drive_heartbeats = 0;
   double drive_heartbeat_gap_max_s = 0;
+  // The safe state as last seen, so that an idle bench shows it (issue #9): the drive's last
+  // statusword (TPDO1) and its CiA 402 state's name, the brake controller's output bit (status
+  // register read back); unset when none arrived recently.
+  std::optional<std::uint16_t> drive_statusword;
+  std::string drive_state;
+  std::optional<bool> brake_output_on;
 };
 
 class Bench {

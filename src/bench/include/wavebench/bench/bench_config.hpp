@@ -30,6 +30,8 @@ struct CanSettings {
   std::uint8_t torque_node = 4;
   double bus_load_warning = 0.8;  // fraction of the bit rate
   double cycle_timeout_s = 0.05;  // simulated clock: real time to wait for a cycle's PDOs
+  // Bench time after a trip's quick stop for the drive's statusword to show it; NMT stop after.
+  double quick_stop_timeout_s = 0.05;
 };
 
 struct DriveSettings {

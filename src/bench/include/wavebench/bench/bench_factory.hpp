@@ -8,6 +8,10 @@
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/model/gear_params.hpp"
 
+namespace wavebench::can {
+class VirtualCanBus;
+}  // namespace wavebench::can
+
 namespace wavebench::simdevices {
 struct SimulatedBenchConfig;
 class SimulatedBench;
@@ -32,6 +36,8 @@ class SimulatedBenchAccess {
   // The simulated brake controller (with_controller(), inject_fault(), stop()).
   virtual simdevices::BrakeServer& brake_server() = 0;
   virtual CanopenBench& canopen() = 0;
+  // The in-process bus; record(true) keeps every frame in log() for tests that check frames.
+  virtual can::VirtualCanBus& virtual_bus() = 0;
 };
 
 // The simulated unit's true gear: the case named in simulated.true_gear, varied as configured.

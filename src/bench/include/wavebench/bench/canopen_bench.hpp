@@ -32,6 +32,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/channel_device.hpp"
+#include "wavebench/bench/quick_stop_watch.hpp"
 #include "wavebench/bench/safety_limits_check.hpp"
 #include "wavebench/bench/sample_assembler.hpp"
 #include "wavebench/bench/sync_lateness_histogram.hpp"
@@ -105,6 +106,9 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   void trip(const std::string& reason) noexcept;
   void make_brake_safe() noexcept;
   void quick_stop_drive() noexcept;
+  // Each cycle after a quick stop: confirmed by the statusword, or NMT stop when it is late.
+  void watch_quick_stop() noexcept;
+  void stop_drive_by_nmt() noexcept;
   void finish_safe_state() noexcept;
   // Drive power stage off: to `target`, from wherever the drive is; a drive in fault stays
   // there (its power stage is off; clearing it is the operator's reset).
@@ -153,7 +157,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   mutable std::mutex reason_mutex_;
   std::string reason_;
   bool tripped_ = false;
-  bool quick_stop_pending_ = false;
+  QuickStopWatch quick_stop_watch_;
   bool powered_ = false;  // the drive was enabled and not yet powered down
 
   std::vector<SampleObserver*> observers_;

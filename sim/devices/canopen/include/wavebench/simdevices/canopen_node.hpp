@@ -77,6 +77,8 @@ class CanopenNode {
   // before the TPDOs are sent: the moment the device latches its inputs.
   virtual void on_sync(double /*now*/) {}
   virtual void on_reset_application() {}
+  // The node just entered NMT stopped (by an NMT command): a profile's "connection abort".
+  virtual void on_nmt_stopped() {}
 
   // Factory PDO configuration (becomes the default restored by NMT resets).
   void set_default_tpdo(int number, std::vector<PdoMappingEntry> mapping, bool valid,

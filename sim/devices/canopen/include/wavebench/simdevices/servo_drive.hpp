@@ -3,8 +3,9 @@
 // PP (new-set-point handshake, change immediately, relative, halt, target reached), PV, CSP
 // and CSV, a cascaded position (P) -> velocity (PI) -> torque loop with speed and torque
 // limits, following-error supervision, software position limits, and fault injection with
-// EMCY. Positions are motor encoder increments, velocities increments/s, accelerations
-// increments/s^2, torque per mille of the rated torque (0x6076).
+// EMCY, and the abort connection option (0x6007) on entering NMT stopped. Positions are motor
+// encoder increments, velocities increments/s, accelerations increments/s^2, torque per mille
+// of the rated torque (0x6076).
 
 #include <cstdint>
 
@@ -32,6 +33,10 @@ struct ServoDriveConfig {
   std::uint32_t profile_deceleration = 131072 * 50;      // 0x6084
   std::uint32_t quick_stop_deceleration = 131072 * 200;  // 0x6085
   std::int16_t quick_stop_option = 6;  // 0x605A: 2 -> switch on disabled after the stop, 6 stay
+  // 0x6007 abort connection option code, applied when the node enters NMT stopped: 0 nothing,
+  // 1 fault (0x8130), 2 disable voltage (power stage off at once), 3 quick stop. A real drive's
+  // factory value varies; the bench writes 2 at configuration.
+  std::int16_t abort_connection_option = 2;
   std::uint32_t following_error_window = 65536;   // 0x6065 [inc]
   std::uint16_t following_error_timeout_ms = 50;  // 0x6066
   std::uint32_t position_window = 20;             // 0x6067 [inc]
@@ -75,6 +80,7 @@ class Cia402ServoDrive final : public CanopenNode {
  protected:
   void on_sync(double now) override;
   void on_reset_application() override;
+  void on_nmt_stopped() override;
 
  private:
   void add_profile_objects();
