@@ -41,12 +41,14 @@ TEST(BenchCheckApi, AllGreenOnTheSimulatedBenchAndNothingMoves) {
 
   const auto status = client.get("/api/status");
   EXPECT_EQ(status.body["state"], "ready") << status.body.dump();
-  // Nothing moved: the input shaft stands still in the samples after the check.
+  // Nothing moved: the input shaft stands still in the samples around the check (below the
+  // 0.05 rad/s = 0.5 rpm the bench itself takes for standing still; the disabled simulated
+  // drive shows a few mrad/s of residual speed).
   const auto live = client.get("/api/live?limit=20");
   ASSERT_EQ(live.status, 200) << live.body.dump();
   ASSERT_FALSE(live.body["samples"].empty());
   for (const auto& sample : live.body["samples"]) {
-    EXPECT_LT(std::abs(sample.value("input_speed_rad_s", 0.0)), 1e-3) << sample.dump();
+    EXPECT_LT(std::abs(sample.value("input_speed_rad_s", 0.0)), 0.05) << sample.dump();
   }
   daemon.shutdown("test done");
 }
