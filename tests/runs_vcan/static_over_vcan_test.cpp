@@ -210,7 +210,8 @@ TEST_F(BenchCheckOverVcan, AllGreenAgainstSimbenchAsItsOwnProcess) {
     config.replace(at, from.size(), to);
   };
   replace("interface: vcan0", std::string("interface: ") + kInterface);
-  replace("tcp:127.0.0.1:1502", "tcp:127.0.0.1:" + std::to_string(port_));
+  replace("endpoint: \"tcp:127.0.0.1:1502\"",
+          "endpoint: \"tcp:127.0.0.1:" + std::to_string(port_) + "\"");
   replace("sdo_timeout: \"500 ms\"", "sdo_timeout: \"5 s\"");  // emulated: generous
   replace("cycle_timeout: \"50 ms\"", "cycle_timeout: \"1 s\"");
   replace("../twin/", (configs / "twin").string() + "/");
