@@ -18,5 +18,6 @@ void register_run_commands(CLI::App& app, ExitStatus& status);  // run static|dy
 void register_daemon_client_commands(CLI::App& app,
                                      ExitStatus& status);          // status|start|abort|runs|export
 void register_report_commands(CLI::App& app, ExitStatus& status);  // report RUN_DIR
+void register_bench_commands(CLI::App& app, ExitStatus& status);   // bench check
 
 }  // namespace wavebench::cli

@@ -119,6 +119,44 @@ TEST(BenchConfig, QuickStopTimeoutTakesATime) {
   EXPECT_NE(e.expected().find("(0, 10 s]"), std::string::npos) << e.expected();
 }
 
+// EDS and identity keys (issue #9): the shipped configs name the simulated devices' EDS files;
+// a missing or malformed EDS and bad identity values are errors naming the key.
+TEST(BenchConfig, EdsAndIdentityKeys) {
+  const auto c = default_simulated_bench_config();
+  ASSERT_TRUE(c.drive.expect.eds);
+  ASSERT_TRUE(c.encoder.expect.eds);
+  ASSERT_TRUE(c.torque_sensor.expect.eds);
+  EXPECT_EQ(c.drive.expect.eds_path.filename(), "servo_drive.eds");
+  EXPECT_EQ(c.drive.expect.identity.vendor_id, 0xA57U);
+  EXPECT_EQ(c.drive.expect.identity.product_code, 0x402U);
+  EXPECT_FALSE(c.drive.expect.identity.serial_number);
+
+  // torque_sensor.type from the EDS where the config is silent: 0x6130:1 is INTEGER32 there,
+  // and the config's own type wins.
+  auto t =
+      parse_bench_config("torque_sensor: {eds: ../eds/torque_sensor.eds}\n", kConfigs / "benches");
+  EXPECT_EQ(t.torque_sensor.sensor.type, canopen::ValueType::i32);
+  t = parse_bench_config("torque_sensor: {eds: ../eds/torque_sensor.eds, type: f32}\n",
+                         kConfigs / "benches");
+  EXPECT_EQ(t.torque_sensor.sensor.type, canopen::ValueType::f32);
+
+  auto e = parse_error("drive: {eds: ../eds/absent.eds}\n");
+  EXPECT_EQ(e.key(), "drive.eds");
+  EXPECT_NE(e.value().find("absent.eds"), std::string::npos) << e.value();
+  // Not an EDS: the reader's message names the file and line.
+  e = parse_error("encoder: {eds: sim.yaml}\n");
+  EXPECT_EQ(e.key(), "encoder.eds");
+  EXPECT_NE(e.expected().find("a CiA 306 EDS"), std::string::npos) << e.expected();
+  e = parse_error("drive: {identity: {vendor: 1}}\n");
+  EXPECT_EQ(e.key(), "drive.identity.vendor");
+  e = parse_error("torque_sensor: {identity: {vendor_id: -1}}\n");
+  EXPECT_EQ(e.key(), "torque_sensor.identity.vendor_id");
+  e = parse_error("drive: {identity: {product_code: 0x1FFFFFFFF}}\n");
+  EXPECT_EQ(e.key(), "drive.identity.product_code");
+  e = parse_error("simulated: {brake_server: maybe}\n");
+  EXPECT_EQ(e.key(), "simulated.brake_server");
+}
+
 // The simulated unit's truth is the twin's nominal case varied (TE x1.08 and +4 deg, stiffness
 // x0.96, backlash 0.35 arcmin), and a variation in the config varies it further.
 TEST(BenchConfig, TrueGearIsTheNominalCaseVaried) {

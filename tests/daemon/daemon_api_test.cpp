@@ -282,3 +282,25 @@ TEST(DaemonStartup, ShutdownAbortsTheActiveRunAndPutsTheBenchInItsSafeState) {
 
 }  // namespace
 }  // namespace wavebench::daemon::testing
+
+namespace wavebench::daemon::testing {
+namespace {
+
+TEST_F(DaemonApiTest, BenchCheckIsRefusedDuringARunAndAbsentWithoutACheck) {
+  // This daemon has no commissioning check: 503 naming it; only GET.
+  auto reply = client().get("/api/bench/check");
+  EXPECT_EQ(reply.status, 503) << reply.body.dump();
+  EXPECT_NE(reply.body.value("detail", "").find("no commissioning check"), std::string::npos);
+  EXPECT_EQ(client().post("/api/bench/check", nlohmann::json::object()).status, 405);
+
+  const auto id = start_endless_run();
+  reply = client().get("/api/bench/check");
+  EXPECT_EQ(reply.status, 409) << reply.body.dump();
+  EXPECT_NE(reply.body.value("detail", "").find("a run is active"), std::string::npos)
+      << reply.body.dump();
+  EXPECT_EQ(client().post("/api/abort", nlohmann::json::object()).status, 200);
+  ASSERT_TRUE(eventually([&] { return run_finished(); })) << id;
+}
+
+}  // namespace
+}  // namespace wavebench::daemon::testing

@@ -153,8 +153,8 @@ TEST(HostileConfigValues, TheOutputBudgetMessageGivesTheNumbers) {
   EXPECT_NE(r.output.find("at 100 kHz output"), std::string::npos) << r.output;
 }
 
-// A bench config with the twin and true-gear cases named by absolute path, so that it can be
-// written outside configs/.
+// A bench config with the twin and true-gear cases and the EDS files named by absolute path, so
+// that it can be written outside configs/.
 std::string bench_config() {
   std::string text = read_file(kSource / "configs/benches/sim.yaml");
   const auto put = [&](const std::string& from, const std::string& to) {
@@ -165,6 +165,8 @@ std::string bench_config() {
       (kSource / "configs/twin/bench-unit-seed004.yaml").string());
   put("case: sim-true-gear.yaml",
       "case: " + (kSource / "configs/benches/sim-true-gear.yaml").string());
+  for (const char* eds : {"servo_drive.eds", "output_encoder.eds", "torque_sensor.eds"})
+    put(std::string("../eds/") + eds, (kSource / "configs/eds" / eds).string());
   return text;
 }
 

@@ -16,6 +16,8 @@
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <string>
 #include <thread>
 
@@ -191,6 +193,47 @@ TEST_F(StaticOverVcan, FourPositionsCompleteAndAgreeWithTheInProcessBench) {
       }
     }
   }
+}
+
+// `wavebench bench check` as its own process against the same simbench process (issue #9):
+// vcan-simbench.yaml on this test's interface and brake port, every row green.
+using BenchCheckOverVcan = StaticOverVcan;
+
+TEST_F(BenchCheckOverVcan, AllGreenAgainstSimbenchAsItsOwnProcess) {
+  const fs::path configs = fs::path(WAVEBENCH_SOURCE_DIR) / "configs";
+  std::stringstream text;
+  text << std::ifstream(configs / "benches/vcan-simbench.yaml").rdbuf();
+  std::string config = text.str();
+  const auto replace = [&config](const std::string& from, const std::string& to) {
+    const auto at = config.find(from);
+    ASSERT_NE(at, std::string::npos) << from;
+    config.replace(at, from.size(), to);
+  };
+  replace("interface: vcan0", std::string("interface: ") + kInterface);
+  replace("endpoint: \"tcp:127.0.0.1:1502\"",
+          "endpoint: \"tcp:127.0.0.1:" + std::to_string(port_) + "\"");
+  replace("sdo_timeout: \"500 ms\"", "sdo_timeout: \"5 s\"");  // emulated: generous
+  replace("cycle_timeout: \"50 ms\"", "cycle_timeout: \"1 s\"");
+  replace("../twin/", (configs / "twin").string() + "/");
+  for (const char* eds : {"servo_drive.eds", "output_encoder.eds", "torque_sensor.eds"})
+    replace(std::string("../eds/") + eds, (configs / "eds" / eds).string());
+  fs::create_directories(root_);
+  const auto path = root_ / "vcan-check.yaml";
+  std::ofstream(path) << config;
+
+  const std::string command = std::string(WAVEBENCH_BINARY_DIR) +
+                              "/src/cli/wavebench bench check " + path.string() + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  ASSERT_NE(pipe, nullptr);
+  std::string output;
+  std::array<char, 4096> buffer{};
+  while (std::fgets(buffer.data(), buffer.size(), pipe)) output += buffer.data();
+  const int status = ::pclose(pipe);
+  std::printf("%s", output.c_str());
+  ASSERT_TRUE(WIFEXITED(status)) << output;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << output;
+  EXPECT_EQ(output.find("RED"), std::string::npos) << output;
+  EXPECT_NE(output.find("checks green"), std::string::npos) << output;
 }
 
 }  // namespace

@@ -58,6 +58,53 @@ std::error_code make_error_code(Cia402Errc e) noexcept {
   return {static_cast<int>(e), cia402_category()};
 }
 
+namespace {
+using enum UsedAccess;
+using enum UsedInPdo;
+namespace dt = datatype;
+
+// SDO: the state machine, modes, profile moves and velocity; TPDO1 statusword and position,
+// TPDO2 velocity and following error (SampleAssembler); the controlword is RPDO-mappable for the
+// quick stop.
+constexpr UsedObject kDriveObjects[] = {
+    {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
+    {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
+    {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
+    {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
+    {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
+    {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
+    {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
+    {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
+    {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+    {0x1A00, 2, "TPDO1 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
+    {0x1801, 1, "TPDO2 COB-ID", dt::kUnsigned32, 0, kReadWrite},
+    {0x1801, 2, "TPDO2 transmission type", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A01, 0, "TPDO2 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A01, 1, "TPDO2 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+    {0x1A01, 2, "TPDO2 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
+    {0x603F, 0, "error code", dt::kUnsigned16, 0, kRead},
+    {0x6040, 0, "controlword", dt::kUnsigned16, 0, kReadWrite, kRpdo},
+    {0x6041, 0, "statusword", dt::kUnsigned16, 0, kRead, kTpdo},
+    {0x6060, 0, "modes of operation", dt::kInteger8, 0, kReadWrite},
+    {0x6061, 0, "modes of operation display", dt::kInteger8, 0, kRead},
+    {0x6064, 0, "position actual value", dt::kInteger32, 0, kRead, kTpdo},
+    {0x606C, 0, "velocity actual value", dt::kInteger32, 0, kRead, kTpdo},
+    {0x607A, 0, "target position", dt::kInteger32, 0, kReadWrite},
+    {0x6081, 0, "profile velocity", dt::kUnsigned32, 0, kReadWrite},
+    {0x6083, 0, "profile acceleration", dt::kUnsigned32, 0, kReadWrite},
+    {0x6084, 0, "profile deceleration", dt::kUnsigned32, 0, kReadWrite},
+    {0x60F4, 0, "following error actual value", dt::kInteger32, 0, kRead, kTpdo, true},
+    {0x60FF, 0, "target velocity", dt::kInteger32, 0, kReadWrite},
+};
+
+}  // namespace
+
+std::span<const UsedObject> Cia402Drive::used_objects() noexcept {
+  return kDriveObjects;
+}
+
 Cia402Drive::Cia402Drive(SdoClient& sdo, Cia402Options options)
     : sdo_(sdo), options_(options), timer_(sdo.bus().context()) {}
 

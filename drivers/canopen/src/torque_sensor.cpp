@@ -99,6 +99,61 @@ std::optional<double> decode_number(ValueType type, std::span<const std::uint8_t
   return std::nullopt;
 }
 
+namespace {
+using enum UsedAccess;
+using enum UsedInPdo;
+namespace dt = datatype;
+
+constexpr UsedObject kTorqueSensorNodeObjects[] = {
+    {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
+    {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
+    {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
+    {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
+    {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
+    {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
+    {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
+    {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
+    {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
+    {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+};
+
+}  // namespace
+
+std::uint16_t data_type_of(ValueType type) noexcept {
+  switch (type) {
+    case ValueType::u8:
+      return datatype::kUnsigned8;
+    case ValueType::u16:
+      return datatype::kUnsigned16;
+    case ValueType::u32:
+      return datatype::kUnsigned32;
+    case ValueType::u64:
+      return datatype::kUnsigned64;
+    case ValueType::i8:
+      return datatype::kInteger8;
+    case ValueType::i16:
+      return datatype::kInteger16;
+    case ValueType::i32:
+      return datatype::kInteger32;
+    case ValueType::i64:
+      return datatype::kInteger64;
+    case ValueType::f32:
+      return datatype::kReal32;
+    case ValueType::f64:
+      return datatype::kReal64;
+  }
+  return 0;
+}
+
+std::vector<UsedObject> TorqueSensor::used_objects(const TorqueSensorConfig& config) {
+  std::vector<UsedObject> out(std::begin(kTorqueSensorNodeObjects),
+                              std::end(kTorqueSensorNodeObjects));
+  out.push_back({config.index, config.sub, "torque process value", data_type_of(config.type), 0,
+                 kRead, kTpdo});
+  return out;
+}
+
 TorqueSensor::TorqueSensor(SdoClient& sdo, TorqueSensorConfig config) : sdo_(sdo), config_(config) {
   if (!std::isfinite(config_.scale) || config_.scale == 0.0) {
     throw std::invalid_argument("torque sensor scale " + std::to_string(config_.scale) +

@@ -229,9 +229,60 @@ void read_can(const YAML::Node& n, CanSettings& can) {
   }
 }
 
-void read_devices(const YAML::Node& root, BenchConfig& c) {
+// `eds:` and `identity:` of a CANopen device section.
+void read_expectations(const YAML::Node& n, const std::string& section,
+                       const std::filesystem::path& base, NodeExpectations& e) {
+  optional(n, "eds", [&](const YAML::Node& v) {
+    const auto path = resolve(base, text(v, section + ".eds"));
+    try {
+      e.eds = std::make_shared<const canopen::Eds>(canopen::Eds::load(path));
+    } catch (const canopen::EdsError& error) {
+      throw ConfigError(section + ".eds", path.string(),
+                        std::string("a CiA 306 EDS: ") + error.what());
+    }
+    e.eds_path = path;
+  });
+  optional(n, "identity", [&](const YAML::Node& id) {
+    check_keys(id, section + ".identity",
+               {"vendor_id", "product_code", "revision", "serial_number"});
+    auto read = [&](const char* key, std::optional<std::uint32_t>& out) {
+      optional(id, key, [&](const YAML::Node& v) {
+        out = static_cast<std::uint32_t>(integer(v, section + ".identity." + key, 0, 0xFFFFFFFFL));
+      });
+    };
+    read("vendor_id", e.identity.vendor_id);
+    read("product_code", e.identity.product_code);
+    read("revision", e.identity.revision);
+    read("serial_number", e.identity.serial_number);
+  });
+}
+
+// Where the config is silent, values from the devices' EDS files: the torque sensor's data type
+// (the DataType of its object). The encoder's resolution and turns stay read from the device
+// (0x6501/0x6502), which knows its own configuration better than a data sheet's defaults.
+void apply_eds_defaults(const YAML::Node& root, BenchConfig& c) {
+  const auto given = [&](const char* section, const char* key) {
+    return root[section] && root[section][key];
+  };
+  auto& sensor = c.torque_sensor.sensor;
+  if (!given("torque_sensor", "type") && c.torque_sensor.expect.eds) {
+    if (const auto* o = c.torque_sensor.expect.eds->find(sensor.index, sensor.sub)) {
+      for (auto t : {canopen::ValueType::u8, canopen::ValueType::u16, canopen::ValueType::u32,
+                     canopen::ValueType::u64, canopen::ValueType::i8, canopen::ValueType::i16,
+                     canopen::ValueType::i32, canopen::ValueType::i64, canopen::ValueType::f32,
+                     canopen::ValueType::f64}) {
+        if (canopen::data_type_of(t) == o->data_type) sensor.type = t;
+      }
+    }
+  }
+}
+
+void read_devices(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
   optional(root, "drive", [&](const YAML::Node& n) {
-    check_keys(n, "drive", {"counts_per_revolution", "profile_acceleration", "target_settle"});
+    check_keys(
+        n, "drive",
+        {"counts_per_revolution", "profile_acceleration", "target_settle", "eds", "identity"});
+    read_expectations(n, "drive", base, c.drive.expect);
     optional(n, "counts_per_revolution", [&](const YAML::Node& v) {
       c.drive.counts_per_revolution =
           static_cast<std::uint32_t>(integer(v, "drive.counts_per_revolution", 1, 1L << 31));
@@ -245,7 +296,8 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
     });
   });
   optional(root, "encoder", [&](const YAML::Node& n) {
-    check_keys(n, "encoder", {"counts_per_turn", "turns", "noise"});
+    check_keys(n, "encoder", {"counts_per_turn", "turns", "noise", "eds", "identity"});
+    read_expectations(n, "encoder", base, c.encoder.expect);
     optional(n, "counts_per_turn", [&](const YAML::Node& v) {
       c.encoder.counts_per_turn =
           static_cast<std::uint32_t>(integer(v, "encoder.counts_per_turn", 2, 1L << 31));
@@ -259,7 +311,9 @@ void read_devices(const YAML::Node& root, BenchConfig& c) {
     });
   });
   optional(root, "torque_sensor", [&](const YAML::Node& n) {
-    check_keys(n, "torque_sensor", {"object", "type", "scale", "offset", "noise"});
+    check_keys(n, "torque_sensor",
+               {"object", "type", "scale", "offset", "noise", "eds", "identity"});
+    read_expectations(n, "torque_sensor", base, c.torque_sensor.expect);
     auto& s = c.torque_sensor.sensor;
     optional(n, "object", [&](const YAML::Node& v) {
       parse_object(text(v, "torque_sensor.object"), "torque_sensor.object", s.index, s.sub);
@@ -389,7 +443,7 @@ void read_safety(const YAML::Node& n, SafetyLimits& l) {
 }
 
 void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::path& base) {
-  check_keys(n, "simulated", {"true_gear", "simbench"});
+  check_keys(n, "simulated", {"true_gear", "simbench", "brake_server"});
   SimulatedSettings s;
   s.true_gear_case =
       std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml";
@@ -416,6 +470,12 @@ void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::
                            "an angle in [0, 1 deg]");
     });
   });
+  optional(n, "brake_server", [&](const YAML::Node& v) {
+    const auto t = text(v, "simulated.brake_server");
+    if (t != "true" && t != "false")
+      throw ConfigError("simulated.brake_server", t, "true or false");
+    s.brake_server = t == "true";
+  });
   optional(n, "simbench", [&](const YAML::Node& v) {
     YAML::Node wrapper;
     wrapper["simbench"] = v;
@@ -423,6 +483,12 @@ void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::
     out << wrapper;
     try {
       s.devices = simdevices::parse_simulated_bench_config(out.str(), s.devices);
+      if (v.IsMap()) {
+        if (v["drive"] && v["drive"]["node_id"]) s.drive_node = s.devices.drive.node_id;
+        if (v["encoder"] && v["encoder"]["node_id"]) s.encoder_node = s.devices.encoder.node_id;
+        if (v["torque_sensor"] && v["torque_sensor"]["node_id"])
+          s.torque_node = s.devices.torque_sensor.node_id;
+      }
     } catch (const std::invalid_argument& e) {
       throw ConfigError("simulated.simbench", scalar_text(v), e.what());
     }
@@ -451,7 +517,8 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
          "drive", "encoder", "torque_sensor", "devices", "brake", "safety", "simulated"});
     read_top(root, c, base_dir);
     optional(root, "can", [&](const YAML::Node& n) { read_can(n, c.can); });
-    read_devices(root, c);
+    read_devices(root, c, base_dir);
+    apply_eds_defaults(root, c);
     read_channel_devices(root, c);
     optional(root, "brake", [&](const YAML::Node& n) {
       try {

@@ -46,6 +46,8 @@ class ForwardingBench : public Bench {
   AcquisitionStats acquisition_stats() const override { return inner_->acquisition_stats(); }
   void request_stop(const std::string& reason) noexcept override { inner_->request_stop(reason); }
 
+  CanopenBench& canopen_bench() { return *inner_; }
+
  protected:
   std::unique_ptr<CanopenBench> inner_;
 };
@@ -58,42 +60,48 @@ class InProcessSimulatedBench final : public ForwardingBench, public SimulatedBe
     encoder_noise_ = devices.encoder.noise_rad;
     torque_noise_ = devices.torque_sensor.noise_nm;
 
-    simdevices::BrakeServerOptions brake;
-    brake.endpoint.transport = modbus::Transport::tcp;
-    brake.endpoint.host = "127.0.0.1";
-    brake.endpoint.port = 0;
-    brake.unit_id = config_.brake.link.unit_id;
-    brake.real_time = false;  // the plant steps the brake physics in bench time
-    brake_ = simdevices::start_brake_server(brake);
-    config_.brake.link.endpoint = brake.endpoint;
-    config_.brake.link.endpoint.port = brake_->port();
+    if (config_.simulated->brake_server) {
+      simdevices::BrakeServerOptions brake;
+      brake.endpoint.transport = modbus::Transport::tcp;
+      brake.endpoint.host = "127.0.0.1";
+      brake.endpoint.port = 0;
+      brake.unit_id = config_.brake.link.unit_id;
+      brake.real_time = false;  // the plant steps the brake physics in bench time
+      brake_ = simdevices::start_brake_server(brake);
+      config_.brake.link.endpoint = brake.endpoint;
+      config_.brake.link.endpoint.port = brake_->port();
+    }
 
     virtual_bus_ = std::make_unique<can::VirtualCanBus>(io_);
     virtual_bus_->record(false);
     device_endpoint_ = virtual_bus_->endpoint("simulated devices");
     master_endpoint_ = virtual_bus_->endpoint("master");
     devices_ = std::make_unique<simdevices::SimulatedBench>(devices, *device_endpoint_);
-    auto* server = brake_.get();
-    devices_->set_brake_coupling([server](double omega_out, double dt) {
-      server->set_output_speed(omega_out);
-      server->step(dt);
-      return server->with_controller(
-          [](simdevices::PowderBrakeController& c) { return c.physics().torque_capacity(); });
-    });
+    if (auto* server = brake_.get()) {
+      devices_->set_brake_coupling([server](double omega_out, double dt) {
+        server->set_output_speed(omega_out);
+        server->step(dt);
+        return server->with_controller(
+            [](simdevices::PowderBrakeController& c) { return c.physics().torque_capacity(); });
+      });
+    }
     devices_->start();
     inner_ = std::make_unique<CanopenBench>(config_, *master_endpoint_);
   }
   ~InProcessSimulatedBench() override {
     inner_.reset();
     devices_.reset();
-    brake_->stop();
+    if (brake_) brake_->stop();
   }
 
   const model::GearParams& true_gear() const override { return true_gear_; }
   double encoder_noise_rad() const override { return encoder_noise_; }
   double torque_noise_nm() const override { return torque_noise_; }
   simdevices::SimulatedBench& devices() override { return *devices_; }
-  simdevices::BrakeServer& brake_server() override { return *brake_; }
+  simdevices::BrakeServer& brake_server() override {
+    if (!brake_) throw std::logic_error("this simulated bench has no brake server");
+    return *brake_;
+  }
   CanopenBench& canopen() override { return *inner_; }
   can::VirtualCanBus& virtual_bus() override { return *virtual_bus_; }
 
@@ -165,15 +173,15 @@ simdevices::SimulatedBenchConfig simulated_devices_from(const BenchConfig& confi
   devices.clock = config.description.simulated_clock ? simdevices::BenchClock::kSyncDriven
                                                      : simdevices::BenchClock::kRealTime;
   devices.sync_period = config.description.sync_period_s;
-  devices.drive.node_id = config.can.drive_node;
+  devices.drive.node_id = config.simulated->drive_node.value_or(config.can.drive_node);
   devices.drive.counts_per_revolution = config.drive.counts_per_revolution;
-  devices.encoder.node_id = config.can.encoder_node;
+  devices.encoder.node_id = config.simulated->encoder_node.value_or(config.can.encoder_node);
   if (config.encoder.counts_per_turn)
     devices.encoder.single_turn_resolution = *config.encoder.counts_per_turn;
   if (config.encoder.turns)
     devices.encoder.revolutions = static_cast<std::uint16_t>(*config.encoder.turns);
   if (config.encoder.noise_rad > 0) devices.encoder.noise_rad = config.encoder.noise_rad;
-  devices.torque_sensor.node_id = config.can.torque_node;
+  devices.torque_sensor.node_id = config.simulated->torque_node.value_or(config.can.torque_node);
   devices.torque_sensor.index = config.torque_sensor.sensor.index;
   devices.torque_sensor.sub = config.torque_sensor.sensor.sub;
   devices.torque_sensor.scale_nm_per_unit = config.torque_sensor.sensor.scale;
@@ -224,6 +232,11 @@ std::unique_ptr<Bench> make_simulated_bench(const BenchConfig& config) {
 std::unique_ptr<Bench> make_bench(const BenchConfig& config) {
   if (config.in_process()) return make_simulated_bench(config);
   return std::make_unique<SocketCanBench>(config);
+}
+
+CanopenBench* canopen_bench_of(Bench& bench) {
+  auto* forwarding = dynamic_cast<ForwardingBench*>(&bench);
+  return forwarding ? &forwarding->canopen_bench() : dynamic_cast<CanopenBench*>(&bench);
 }
 
 SimulatedBenchAccess* simulated_access(Bench& bench) {

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "wavebench/bench/bench_devices.hpp"
 #include "wavebench/canopen/cob_id.hpp"
 #include "wavebench/canopen/nmt.hpp"
 #include "wavebench/canopen/pdo.hpp"
@@ -132,6 +133,11 @@ void CanopenBench::connect() {
   last_drive_heartbeat_ = {};
   t0_ = Clock::now();
   try {
+    if (const auto problems = eds_problems(config_); !problems.empty()) {
+      std::string text = "the EDS disagrees with the objects the bench uses";
+      for (const auto& p : problems) text += "; " + p;
+      throw std::runtime_error(text);
+    }
     connect_brake();
     configure_nodes();
     start_acquisition();

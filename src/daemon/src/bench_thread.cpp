@@ -27,12 +27,13 @@ class BenchThread::StatsObserver : public bench::SampleObserver {
 };
 
 struct BenchThread::Job {
-  enum class Kind { kRun, kReset };
+  enum class Kind { kRun, kReset, kCheck };
   Kind kind = Kind::kRun;
   runs::RunRequest request;
   std::promise<StartOutcome> started;  // kRun: fulfilled once
   bool started_set = false;
-  std::promise<std::string> reset_done;  // kReset: error text
+  std::promise<std::string> reset_done;   // kReset: error text
+  std::promise<CheckOutcome> check_done;  // kCheck
 
   void settle(StartOutcome outcome) {
     if (started_set) return;
@@ -139,6 +140,8 @@ void BenchThread::thread_main() {
     lock.unlock();
     if (job->kind == Job::Kind::kRun) {
       run_job(*job);
+    } else if (job->kind == Job::Kind::kCheck) {
+      check_job(*job);
     } else {
       reset_job(*job);
     }
@@ -252,6 +255,41 @@ void BenchThread::reset_job(Job& job) {
     spdlog::warn("fault not cleared: {}", error);
   }
   job.reset_done.set_value(error);
+}
+
+void BenchThread::check_job(Job& job) {
+  CheckOutcome outcome;
+  try {
+    outcome.report = check_(*bench_);
+    refresh_stats_on_bench_thread();
+  } catch (const std::exception& e) {
+    outcome.kind = CheckOutcome::Kind::kUnavailable;
+    outcome.detail = e.what();
+  }
+  job.check_done.set_value(std::move(outcome));
+}
+
+CheckOutcome BenchThread::check(std::chrono::milliseconds wait) {
+  auto job = std::make_shared<Job>();
+  job->kind = Job::Kind::kCheck;
+  auto done = job->check_done.get_future();
+  {
+    std::lock_guard lock(mutex_);
+    if (stopping_ || !bench_) return {CheckOutcome::Kind::kRejected, {}, "the daemon is stopping"};
+    if (run_ || run_queued_) {
+      return {CheckOutcome::Kind::kRejected,
+              {},
+              "a run is active" +
+                  (run_ && !run_->run_id.empty() ? " (" + run_->run_id + ")" : std::string()) +
+                  ": the check runs with the bench inactive"};
+    }
+    if (!check_) return {CheckOutcome::Kind::kUnavailable, {}, "no commissioning check here"};
+    jobs_.push_back(job);
+  }
+  wake_.notify_all();
+  if (done.wait_for(wait) != std::future_status::ready)
+    return {CheckOutcome::Kind::kUnavailable, {}, "the check did not finish in time"};
+  return done.get();
 }
 
 StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milliseconds wait) {
@@ -377,6 +415,8 @@ void BenchThread::shutdown(const std::string& reason) {
     for (auto& job : jobs_) {
       if (job->kind == Job::Kind::kRun) {
         job->settle({StartOutcome::Kind::kRejected, "", "the daemon is stopping"});
+      } else if (job->kind == Job::Kind::kCheck) {
+        job->check_done.set_value({CheckOutcome::Kind::kRejected, {}, "the daemon is stopping"});
       } else {
         job->reset_done.set_value("the daemon is stopping");
       }

@@ -24,6 +24,7 @@ Daemon::Daemon(DaemonSetup setup)
       live_(setup_.live_capacity),
       bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
       api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts)) {
+  bench_thread_.set_check(setup_.bench_check);
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(),

@@ -184,6 +184,8 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       if (seg[1] == "stop") return stop();
       return reset();
     }
+    if (seg.size() == 3 && seg[1] == "bench" && seg[2] == "check")
+      return get ? bench_check() : method_not_allowed("GET");
     if (seg.size() == 2 && seg[1] == "runs") {
       if (get) return list_runs(target);
       if (!post) return method_not_allowed("GET or POST");
@@ -312,6 +314,19 @@ ApiResponse DaemonApi::abort_run() const {
 ApiResponse DaemonApi::stop() const {
   if (!bench_.stop("operator stop")) return api_error(409, "conflict", "no bench is connected");
   return {200, {{"stopped", true}}};
+}
+
+ApiResponse DaemonApi::bench_check() const {
+  auto outcome = bench_.check();
+  switch (outcome.kind) {
+    case CheckOutcome::Kind::kDone:
+      return {200, std::move(outcome.report)};
+    case CheckOutcome::Kind::kRejected:
+      return api_error(409, "conflict", outcome.detail);
+    case CheckOutcome::Kind::kUnavailable:
+      break;
+  }
+  return api_error(503, "unavailable", outcome.detail);
 }
 
 ApiResponse DaemonApi::reset() const {

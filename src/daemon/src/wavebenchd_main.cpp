@@ -66,6 +66,7 @@ int run(const daemon::DaemonOptions& options) {
                token_file.string());
   setup.bench_factory = [config] { return bench::make_bench(config); };
   setup.launcher = daemon::make_executor_run_launcher();
+  setup.bench_check = daemon::make_commissioning_check();
   setup.runs_dir = options.runs_dir;
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;

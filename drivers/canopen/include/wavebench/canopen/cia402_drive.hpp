@@ -15,6 +15,7 @@
 
 #include "wavebench/canopen/cia402.hpp"
 #include "wavebench/canopen/sdo_client.hpp"
+#include "wavebench/canopen/used_object.hpp"
 
 namespace wavebench::canopen {
 
@@ -68,6 +69,9 @@ class Cia402Drive {
   explicit Cia402Drive(SdoClient& sdo, Cia402Options options = {});
   Cia402Drive(const Cia402Drive&) = delete;
   Cia402Drive& operator=(const Cia402Drive&) = delete;
+
+  // Every object the bench uses on a CiA 402 drive (SDO and its TPDO1/TPDO2 mapping).
+  static std::span<const UsedObject> used_objects() noexcept;
 
   SdoClient& sdo() noexcept { return sdo_; }
   const Cia402Failure& last_failure() const noexcept { return failure_; }

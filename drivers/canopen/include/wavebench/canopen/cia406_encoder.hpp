@@ -8,6 +8,7 @@
 #include <system_error>
 
 #include "wavebench/canopen/sdo_client.hpp"
+#include "wavebench/canopen/used_object.hpp"
 
 namespace wavebench::canopen {
 
@@ -41,6 +42,9 @@ class Cia406Encoder {
   Cia406Encoder(SdoClient& sdo, Cia406Config config = {});
   Cia406Encoder(const Cia406Encoder&) = delete;
   Cia406Encoder& operator=(const Cia406Encoder&) = delete;
+
+  // Every object the bench uses on a CiA 406 encoder (SDO and its TPDO1 mapping).
+  static std::span<const UsedObject> used_objects() noexcept;
 
   // Reads 0x1000 and, unless configured, 0x6501 and 0x6502. Throws naming the object.
   void read_configuration();

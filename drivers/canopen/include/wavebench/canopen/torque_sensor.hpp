@@ -7,9 +7,11 @@
 #include <span>
 #include <string>
 #include <string_view>
+#include <vector>
 #include <system_error>
 
 #include "wavebench/canopen/sdo_client.hpp"
+#include "wavebench/canopen/used_object.hpp"
 
 namespace wavebench::canopen {
 
@@ -18,6 +20,8 @@ enum class ValueType { u8, u16, u32, u64, i8, i16, i32, i64, f32, f64 };
 std::optional<ValueType> parse_value_type(std::string_view text) noexcept;
 std::string_view to_string(ValueType type) noexcept;
 std::size_t size_of(ValueType type) noexcept;
+// The CiA 301 data type index (datatype::kInteger32 for i32, ...).
+std::uint16_t data_type_of(ValueType type) noexcept;
 // The little-endian bytes as a double (integers exactly up to 2^53); nullopt on a size mismatch.
 std::optional<double> decode_number(ValueType type, std::span<const std::uint8_t> bytes) noexcept;
 
@@ -34,6 +38,9 @@ class TorqueSensor {
   TorqueSensor(SdoClient& sdo, TorqueSensorConfig config);
   TorqueSensor(const TorqueSensor&) = delete;
   TorqueSensor& operator=(const TorqueSensor&) = delete;
+
+  // Every object the bench uses on a torque sensor whose process value is `config`'s object.
+  static std::vector<UsedObject> used_objects(const TorqueSensorConfig& config);
 
   const TorqueSensorConfig& config() const noexcept { return config_; }
   // The PDO mapping entry for the configured object.

@@ -6,12 +6,14 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
 
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/bench/channel_device.hpp"
+#include "wavebench/canopen/eds.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
@@ -34,21 +36,40 @@ struct CanSettings {
   double quick_stop_timeout_s = 0.05;
 };
 
+// 0x1018 as the config expects it (`identity:` of a device); unset sub-indices are not compared.
+struct ExpectedIdentity {
+  std::optional<std::uint32_t> vendor_id;
+  std::optional<std::uint32_t> product_code;
+  std::optional<std::uint32_t> revision;
+  std::optional<std::uint32_t> serial_number;
+};
+
+// What a CANopen device of the bench is expected to be: its EDS (`eds:`, relative to the config
+// file; every object the bench uses is checked against it before connecting) and its identity.
+struct NodeExpectations {
+  std::filesystem::path eds_path;           // empty: none named
+  std::shared_ptr<const canopen::Eds> eds;  // read at config load
+  ExpectedIdentity identity;
+};
+
 struct DriveSettings {
   std::uint32_t counts_per_revolution = 131072;  // motor encoder increments per input turn
   double profile_acceleration_rad_s2 = 0;        // 0: the drive's own 0x6083/0x6084
   double target_settle_s = 0.0;                  // extra wait after target reached
+  NodeExpectations expect;
 };
 
 struct EncoderSettings {
   std::optional<std::uint32_t> counts_per_turn;  // unset: read 0x6501
   std::optional<std::uint32_t> turns;            // unset: read 0x6502
   double noise_rad = 0;                          // for the twin's residual floor
+  NodeExpectations expect;
 };
 
 struct TorqueSensorSettings {
   canopen::TorqueSensorConfig sensor{0x6130, 1, canopen::ValueType::i32, 1e-3, 0.0};
   double noise_nm = 0;
+  NodeExpectations expect;
 };
 
 // How the simulated unit's "true" gear differs from the case it starts from, so that the twin
@@ -64,6 +85,12 @@ struct SimulatedSettings {
   std::filesystem::path true_gear_case;  // a twin case; its gear, varied, is the unit's truth
   TrueGearVariation variation;
   simdevices::SimulatedBenchConfig devices;  // node ids, noise, ...; clock set by the bench
+  // A simulated device sits at can.nodes unless simbench names its node_id: a miswired bench
+  // (the commissioning check's wrong-node case).
+  std::optional<std::uint8_t> drive_node, encoder_node, torque_node;
+  // false: no simulated brake controller; the bench talks to brake.link as configured (an
+  // external controller, or nobody: the commissioning check's unreachable-brake case).
+  bool brake_server = true;
 };
 
 struct BenchConfig {

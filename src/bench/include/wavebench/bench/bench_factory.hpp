@@ -56,6 +56,9 @@ std::unique_ptr<Bench> make_simulated_bench(const BenchConfig& config);
 // with the brake at config.brake.link.endpoint.
 std::unique_ptr<Bench> make_bench(const BenchConfig& config);
 
+// The CanopenBench inside a bench from make_bench() (or `bench` itself); nullptr otherwise.
+CanopenBench* canopen_bench_of(Bench& bench);
+
 // nullptr for anything but the in-process simulated bench.
 SimulatedBenchAccess* simulated_access(Bench& bench);
 

@@ -83,6 +83,8 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   void on_sync_tick(std::function<void(const canopen::SyncProducer::Tick&)> hook) {
     tick_hook_ = std::move(hook);
   }
+  // The brake supervisor's latest readback while it is fresh (the commissioning check).
+  std::optional<modbus::BrakeReadback> brake_readback() const { return fresh_brake_readback(); }
   // Drive values of the last cycle (statusword, following error).
   const DriveCycleValues& latest_drive() const noexcept { return latest_drive_; }
 

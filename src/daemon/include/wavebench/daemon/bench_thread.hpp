@@ -10,6 +10,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
@@ -24,6 +25,21 @@ namespace wavebench::daemon {
 
 // Called on the bench thread. Throws std::invalid_argument for a bad config.
 using BenchFactory = std::function<std::unique_ptr<bench::Bench>()>;
+
+// The commissioning check on the bench thread (bench_check.hpp); returns its report as JSON.
+// Nothing may move: the bench is inactive while it runs.
+using BenchCheck = std::function<nlohmann::json(bench::Bench&)>;
+
+// The real one, bench::check_bench on the daemon's connected bench (src/commissioning_check.cpp,
+// built with the executable: the library itself does not link the bench).
+BenchCheck make_commissioning_check();
+
+struct CheckOutcome {
+  enum class Kind { kDone, kRejected, kUnavailable };
+  Kind kind = Kind::kDone;
+  nlohmann::json report;
+  std::string detail;
+};
 
 struct ActiveRun {
   std::string run_id;  // empty until the executor has created the run
@@ -88,6 +104,11 @@ class BenchThread {
   // Clears a fault or retries a failed connect, on the bench thread; returns the error text
   // (empty when the bench is ready afterwards).
   std::string reset(std::chrono::milliseconds wait = std::chrono::seconds(30));
+  // Before start(): what check() runs. Without one, check() answers kUnavailable.
+  void set_check(BenchCheck check) { check_ = std::move(check); }
+  // Runs the commissioning check on the bench thread; refused while a run is active or queued
+  // (no run starts while it runs: the bench thread does one job at a time).
+  CheckOutcome check(std::chrono::milliseconds wait = std::chrono::seconds(60));
   BenchStatus status() const;
   // Trips the bench with `reason` if a run is active, lets the run finish aborted, puts the
   // bench in its safe state, disconnects and joins. Idempotent.
@@ -104,11 +125,13 @@ class BenchThread {
   void connect_bench();
   void run_job(Job& job);
   void reset_job(Job& job);
+  void check_job(Job& job);
   void idle_until_job(std::unique_lock<std::mutex>& lock);
   void trip(const std::string& reason);
   void refresh_stats_on_bench_thread();
 
   BenchFactory factory_;
+  BenchCheck check_;
   storage::RunStore& store_;
   RunLauncher& launcher_;
   std::string config_text_;

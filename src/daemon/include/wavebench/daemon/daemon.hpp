@@ -24,6 +24,7 @@ inline constexpr unsigned short kDefaultPort = 8470;
 struct DaemonSetup {
   BenchFactory bench_factory;
   std::unique_ptr<RunLauncher> launcher;
+  BenchCheck bench_check;  // GET /api/bench/check; none: 503
   std::filesystem::path runs_dir;
   std::string listen_address = "127.0.0.1";
   unsigned short port = kDefaultPort;  // 0 = ephemeral

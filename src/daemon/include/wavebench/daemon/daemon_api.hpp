@@ -12,6 +12,7 @@
 //   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
 //                                             page_gaps counts gaps within it)
 //   GET  /api/live?since=&limit=              latest samples
+//   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
 //
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
@@ -65,6 +66,7 @@ class DaemonApi {
   ApiResponse abort_run() const;
   ApiResponse stop() const;
   ApiResponse reset() const;
+  ApiResponse bench_check() const;
   ApiResponse list_runs(const HttpTarget& target) const;
   ApiResponse run_detail(const std::string& id) const;
   ApiResponse run_samples(const std::string& id, const HttpTarget& target) const;

@@ -139,6 +139,12 @@ class ObjectDictionary {
   void restore_defaults(std::uint16_t first, std::uint16_t last);
 
   std::size_t size() const { return entries_.size(); }
+  // Every entry in index, sub-index order (an EDS is compared against them).
+  template <typename F>
+  void for_each(F&& visit) const {
+    for (const auto& [k, e] : entries_)
+      visit(static_cast<std::uint16_t>(k >> 8), static_cast<std::uint8_t>(k & 0xFFU), e);
+  }
 
  private:
   static std::uint32_t key(std::uint16_t index, std::uint8_t sub) {

@@ -1,0 +1,42 @@
+#include "wavebench/canopen/used_object.hpp"
+
+#include <fmt/format.h>
+
+namespace wavebench::canopen {
+
+std::string describe(const UsedObject& object) {
+  return fmt::format("0x{:04X}:{} {}", object.index, object.sub, object.name);
+}
+
+std::vector<std::string> check_against_eds(std::span<const UsedObject> used, const Eds& eds) {
+  std::vector<std::string> problems;
+  for (const auto& u : used) {
+    const auto* o = eds.find(u.index, u.sub);
+    if (!o) {
+      if (!u.optional) problems.push_back(describe(u) + ": not in the EDS");
+      continue;
+    }
+    if (o->data_type != u.data_type && (u.alt_data_type == 0 || o->data_type != u.alt_data_type)) {
+      problems.push_back(
+          fmt::format("{}: EDS DataType {}, expected {}{}", describe(u),
+                      data_type_name(o->data_type), data_type_name(u.data_type),
+                      u.alt_data_type ? " or " + data_type_name(u.alt_data_type) : std::string()));
+    }
+    const bool need_read = u.access != UsedAccess::kWrite || u.pdo == UsedInPdo::kTpdo;
+    const bool need_write = u.access != UsedAccess::kRead || u.pdo == UsedInPdo::kRpdo;
+    if ((need_read && !readable(o->access)) || (need_write && !writable(o->access))) {
+      problems.push_back(fmt::format("{}: EDS AccessType {}, the bench {}", describe(u),
+                                     to_string(o->access),
+                                     need_read && need_write ? "reads and writes it"
+                                     : need_read             ? "reads it"
+                                                             : "writes it"));
+    }
+    if (u.pdo != UsedInPdo::kNone && !o->pdo_mapping) {
+      problems.push_back(fmt::format("{}: EDS PDOMapping 0, the bench maps it in a {}", describe(u),
+                                     u.pdo == UsedInPdo::kTpdo ? "TPDO" : "RPDO"));
+    }
+  }
+  return problems;
+}
+
+}  // namespace wavebench::canopen

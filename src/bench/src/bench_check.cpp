@@ -1,0 +1,438 @@
+#include "wavebench/bench/bench_check.hpp"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <set>
+
+#include "wavebench/bench/bench_devices.hpp"
+#include "wavebench/canopen/cob_id.hpp"
+#include "wavebench/canopen/nmt.hpp"
+#include "wavebench/canopen/pdo.hpp"
+#include "wavebench/canopen/sdo_abort.hpp"
+#include "wavebench/modbus/modbus_endpoint.hpp"
+
+namespace wavebench::bench {
+namespace {
+
+using canopen::SdoAbort;
+
+std::string hex32(std::uint32_t v) {
+  return fmt::format("0x{:08X}", v);
+}
+
+std::uint32_t le32(const std::vector<std::uint8_t>& b) {
+  std::uint32_t v = 0;
+  for (std::size_t i = 0; i < b.size() && i < 4; ++i) v |= std::uint32_t{b[i]} << (8 * i);
+  return v;
+}
+
+std::string device_label(const BenchCanopenDevice& d) {
+  return fmt::format("{} (node {})", d.name, d.node);
+}
+
+bool is_abort(const std::error_code& ec, SdoAbort code) {
+  return ec == canopen::make_error_code(code);
+}
+
+class Check {
+ public:
+  Check(CanopenBench& bench, const CheckOptions& options)
+      : bench_(bench), config_(bench.config()), options_(options) {
+    report_.bench = config_.description.name;
+  }
+
+  CheckReport run() {
+    const auto devices = canopen_devices(config_);
+    std::set<std::uint8_t> answering;
+    for (const auto& d : devices) {
+      eds_row(d);
+      if (node_rows(d)) answering.insert(d.node);
+    }
+    brake_row();
+    const std::string not_connected = connect_if_asked();
+    if (!not_connected.empty()) {
+      for (const auto& d : devices) {
+        add(device_label(d), "PDO mapping", false, "not checked: " + not_connected);
+        add(device_label(d), "heartbeat", false, "not checked: " + not_connected);
+      }
+      add("bus", "SYNC round trip", false, "not checked: " + not_connected);
+      add("bus", "bus load", false, "not checked: " + not_connected);
+    } else {
+      for (const auto& d : devices) pdo_row(d, answering.contains(d.node));
+      observe(devices);
+    }
+    units_row(devices.front(), answering.contains(devices.front().node));
+    return std::move(report_);
+  }
+
+ private:
+  void add(std::string device, std::string item, bool ok, std::string detail) {
+    report_.rows.push_back({std::move(device), std::move(item), ok, std::move(detail)});
+  }
+
+  void eds_row(const BenchCanopenDevice& d) {
+    if (!d.expect->eds) {
+      add(device_label(d), "EDS", true, "none named (" + d.config_key + ".eds)");
+      return;
+    }
+    const auto problems = canopen::check_against_eds(d.used, *d.expect->eds);
+    const auto file = d.expect->eds_path.filename().string();
+    if (problems.empty()) {
+      add(device_label(d), "EDS", true,
+          fmt::format("{}: all {} used objects agree (type, access, PDO mapping)", file,
+                      d.used.size()));
+      return;
+    }
+    std::string text = file + ": ";
+    for (std::size_t i = 0; i < problems.size(); ++i) text += (i ? "; " : "") + problems[i];
+    add(device_label(d), "EDS", false, text);
+  }
+
+  // Node answers, device type, identity, each used object. False when the node is silent.
+  bool node_rows(const BenchCanopenDevice& d) {
+    auto& sdo = bench_.master().sdo(d.node);
+    const auto label = device_label(d);
+    std::error_code ec;
+    const auto type_bytes = sdo.upload(0x1000, 0, ec);
+    if (ec) {
+      add(label, "node answers", false,
+          fmt::format("no SDO answer from node {} (can.nodes.{}): {}", d.node, d.config_key,
+                      ec.message()));
+      return false;
+    }
+    add(label, "node answers", true, "SDO upload of 0x1000 answered");
+
+    const auto device_type = le32(type_bytes);
+    std::string type_problem;
+    if (type_bytes.size() != 4) {
+      type_problem = fmt::format("0x1000 is {} bytes, expected 4", type_bytes.size());
+    } else if (d.profile != 0 && (device_type & 0xFFFFU) != d.profile) {
+      type_problem = fmt::format("0x1000 = {}: profile {} (0x{:04X}), expected CiA {} (0x{:04X})",
+                                 hex32(device_type), device_type & 0xFFFFU, device_type & 0xFFFFU,
+                                 d.profile, d.profile);
+    } else if (d.expect->eds) {
+      if (const auto* o = d.expect->eds->find(0x1000, 0)) {
+        const auto expected = d.expect->eds->default_integer(*o, d.node);
+        if (expected && static_cast<std::uint32_t>(*expected) != device_type)
+          type_problem = fmt::format("0x1000 = {}, the EDS says {}", hex32(device_type),
+                                     hex32(static_cast<std::uint32_t>(*expected)));
+      }
+    }
+    add(label, "device type", type_problem.empty(),
+        type_problem.empty() ? "0x1000 = " + hex32(device_type) : type_problem);
+
+    identity_row(d, sdo);
+    for (const auto& u : d.used) object_row(d, sdo, u);
+    return true;
+  }
+
+  void identity_row(const BenchCanopenDevice& d, canopen::SdoClient& sdo) {
+    struct Field {
+      std::uint8_t sub;
+      const char* name;
+      const char* key;
+      const std::optional<std::uint32_t>* expected;
+    };
+    const auto& id = d.expect->identity;
+    const Field fields[] = {{1, "vendor-ID", "vendor_id", &id.vendor_id},
+                            {2, "product code", "product_code", &id.product_code},
+                            {3, "revision", "revision", &id.revision},
+                            {4, "serial", "serial_number", &id.serial_number}};
+    std::string seen;
+    std::string wrong;
+    for (const auto& f : fields) {
+      std::error_code ec;
+      const auto v = sdo.read<std::uint32_t>(0x1018, f.sub, ec);
+      if (ec) {
+        wrong += fmt::format("{}0x1018:{} {} unreadable: {}", wrong.empty() ? "" : "; ", f.sub,
+                             f.name, ec.message());
+        continue;
+      }
+      seen += fmt::format("{}{} {}", seen.empty() ? "" : ", ", f.name, hex32(v));
+      if (*f.expected && **f.expected != v) {
+        wrong += fmt::format("{}{} {}, expected {} ({}.identity.{})", wrong.empty() ? "" : "; ",
+                             f.name, hex32(v), hex32(**f.expected), d.config_key, f.key);
+      }
+    }
+    const bool any_expected = id.vendor_id || id.product_code || id.revision || id.serial_number;
+    add(device_label(d), "identity", wrong.empty(),
+        wrong.empty() ? seen + (any_expected ? " (as configured)" : " (nothing expected)") : wrong);
+  }
+
+  void object_row(const BenchCanopenDevice& d, canopen::SdoClient& sdo,
+                  const canopen::UsedObject& u) {
+    const auto label = device_label(d);
+    const auto item = canopen::describe(u);
+    std::error_code ec;
+    const auto bytes = sdo.upload(u.index, u.sub, ec);
+    const auto type = canopen::data_type_name(u.data_type);
+    if (is_abort(ec, SdoAbort::no_object) || is_abort(ec, SdoAbort::no_sub_index)) {
+      if (u.optional) {
+        add(label, item, true, "absent (optional: the bench goes on without it)");
+      } else {
+        add(label, item, false, "missing: " + ec.message());
+      }
+      return;
+    }
+    if (is_abort(ec, SdoAbort::write_only)) {
+      add(label, item, u.access == canopen::UsedAccess::kWrite,
+          u.access == canopen::UsedAccess::kWrite ? "present, write-only"
+                                                  : "write-only: the bench reads it");
+      return;
+    }
+    if (ec) {
+      add(label, item, false, "SDO upload failed: " + ec.message());
+      return;
+    }
+    const auto size = canopen::data_type_size(u.data_type);
+    const auto alt = canopen::data_type_size(u.alt_data_type);
+    if (size != 0 && bytes.size() != size && (alt == 0 || bytes.size() != alt)) {
+      add(label, item, false,
+          fmt::format("{} bytes read, expected {} ({})", bytes.size(), size, type));
+      return;
+    }
+    std::string access = u.access == canopen::UsedAccess::kRead
+                             ? "read"
+                             : "read (written by the bench; not written here)";
+    if (d.expect->eds) {
+      if (const auto* o = d.expect->eds->find(u.index, u.sub))
+        access += fmt::format(", EDS {}{}", canopen::to_string(o->access),
+                              o->pdo_mapping ? ", PDO-mappable" : "");
+    }
+    add(label, item, true, fmt::format("{}, {} bytes {}", type, bytes.size(), access));
+  }
+
+  void brake_row() {
+    const auto where = modbus::to_string(config_.brake.link.endpoint);
+    const auto label = "brake controller (" + where + ")";
+    if (bench_.state() != BenchLifecycle::kUnconfigured) {
+      // Connected: the supervisor reads the registers all along (one link per line).
+      const auto readback = bench_.brake_readback();
+      if (readback) {
+        add(label, "registers readable", true,
+            fmt::format("supervisor readback: coil {:.3f} A, torque {:.2f} N*m, {:.1f} degC{}",
+                        readback->coil_current_a, readback->torque_nm, readback->temperature_c,
+                        readback->alarm_text.empty() ? "" : ", " + readback->alarm_text));
+      } else {
+        add(label, "registers readable", false, "no fresh readback from the supervisor");
+      }
+      return;
+    }
+    try {
+      modbus::BrakeClient client(config_.brake);
+      client.connect();
+      const auto r = client.read();
+      const auto control = client.read_control();
+      client.disconnect();
+      add(label, "registers readable", true,
+          fmt::format("control 0x{:04X}, coil {:.3f} A, torque {:.2f} N*m, {:.1f} degC{}", control,
+                      r.coil_current_a, r.torque_nm, r.temperature_c,
+                      r.alarm_text.empty() ? "" : ", " + r.alarm_text));
+    } catch (const std::exception& e) {
+      add(label, "registers readable", false, e.what());
+    }
+  }
+
+  // Empty when the bench is connected (acquiring) for the remaining rows.
+  std::string connect_if_asked() {
+    if (bench_.state() != BenchLifecycle::kUnconfigured) return {};
+    if (!options_.connect) return "the bench is not connected";
+    try {
+      bench_.connect();
+      return {};
+    } catch (const std::exception& e) {
+      return std::string("the bench did not connect: ") + e.what();
+    }
+  }
+
+  std::vector<canopen::PdoConfig> expected_tpdos(const BenchCanopenDevice& d) const {
+    if (d.node == config_.can.drive_node)
+      return {SampleAssembler::drive_position_pdo(d.node),
+              SampleAssembler::drive_velocity_pdo(d.node)};
+    if (d.node == config_.can.encoder_node) return {SampleAssembler::encoder_pdo(d.node)};
+    canopen::TorqueSensor sensor(bench_.master().sdo(d.node), config_.torque_sensor.sensor);
+    canopen::PdoConfig torque;
+    torque.cob_id = canopen::tpdo_cob_id(1, d.node);
+    torque.entries = {canopen::PdoEntry::decode(sensor.mapping_entry())};
+    return {torque};
+  }
+
+  void pdo_row(const BenchCanopenDevice& d, bool answering) {
+    const auto label = device_label(d);
+    if (!answering) {
+      add(label, "PDO mapping", false, "not checked: the node does not answer");
+      return;
+    }
+    auto& sdo = bench_.master().sdo(d.node);
+    std::string seen;
+    std::string wrong;
+    unsigned number = 0;
+    for (const auto& pdo : expected_tpdos(d)) {
+      ++number;
+      const auto map = static_cast<std::uint16_t>(0x1A00 + number - 1);
+      std::error_code ec;
+      const auto count = sdo.read<std::uint8_t>(map, 0, ec);
+      std::string entries;
+      bool same = !ec && count == pdo.entries.size();
+      for (std::uint8_t k = 1; !ec && k <= count && k <= 8; ++k) {
+        const auto e = canopen::PdoEntry::decode(sdo.read<std::uint32_t>(map, k, ec));
+        if (ec) break;
+        entries +=
+            fmt::format("{}0x{:04X}:{}/{}", entries.empty() ? "" : ", ", e.index, e.sub, e.bits);
+        if (k > pdo.entries.size() || pdo.entries[k - 1].encode() != e.encode()) same = false;
+      }
+      if (ec) {
+        wrong += fmt::format("TPDO{} mapping unreadable: {}; ", number, ec.message());
+        continue;
+      }
+      seen += fmt::format("{}TPDO{} [{}]", seen.empty() ? "" : ", ", number, entries);
+      if (!same)
+        wrong += fmt::format("TPDO{} reads back [{}], not the bench's mapping; ", number, entries);
+    }
+    add(label, "PDO mapping", wrong.empty(), wrong.empty() ? seen + " (read back)" : wrong);
+  }
+
+  void observe(const std::vector<BenchCanopenDevice>& devices) {
+    const double producer = config_.can.heartbeat_producer_s;
+    const double period = config_.description.sync_period_s;
+    const double window =
+        options_.observe_s > 0 ? options_.observe_s : std::max(3 * producer + 0.05, 100 * period);
+    std::map<std::uint8_t, unsigned> heartbeats;
+    std::map<std::uint8_t, canopen::NmtState> states;
+    std::map<std::uint32_t, unsigned> tpdos;
+    double bits = 0;
+    auto subscription = bench_.master().bus().on_frame([&](const can::Frame& f) {
+      bits += (47.0 + 8.0 * f.len) * 1.2;  // as the bench's estimate: stuffing allowance
+      if (const auto hb = canopen::decode_heartbeat(f)) {
+        ++heartbeats[hb->node];
+        states[hb->node] = hb->state;
+      } else {
+        ++tpdos[f.id];
+      }
+    });
+    const auto before = bench_.acquisition_stats();
+    const auto t0 = std::chrono::steady_clock::now();
+    bench_.idle_for(window);
+    const auto real = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const auto after = bench_.acquisition_stats();
+    subscription.reset();
+
+    for (const auto& d : devices) {
+      const auto n = heartbeats[d.node];
+      const bool ok = n > 0 && states[d.node] == canopen::NmtState::operational;
+      add(device_label(d), "heartbeat", ok,
+          n == 0 ? fmt::format("none in {:.2f} s (0x1017 = {} ms)", window,
+                               std::lround(producer * 1e3))
+                 : fmt::format("{} in {:.2f} s, {}", n, window,
+                               std::string(canopen::to_string(states[d.node]))));
+    }
+
+    const auto syncs = after.syncs_sent - before.syncs_sent;
+    const auto samples = after.samples - before.samples;
+    const auto incomplete = after.incomplete_samples - before.incomplete_samples;
+    std::string missing;
+    struct Expected {
+      const char* name;
+      std::uint32_t cob;
+    };
+    const Expected expected[] = {
+        {"servo drive TPDO1", canopen::tpdo_cob_id(1, config_.can.drive_node)},
+        {"servo drive TPDO2", canopen::tpdo_cob_id(2, config_.can.drive_node)},
+        {"output encoder TPDO1", canopen::tpdo_cob_id(1, config_.can.encoder_node)},
+        {"torque sensor TPDO1", canopen::tpdo_cob_id(1, config_.can.torque_node)}};
+    for (const auto& e : expected) {
+      if (tpdos[e.cob] == 0)
+        missing += fmt::format("{}{} (0x{:03X})", missing.empty() ? "" : ", ", e.name, e.cob);
+    }
+    // The first and the last cycle of the window may be cut by it.
+    const bool ok = syncs > 0 && missing.empty() && incomplete <= 2 && samples + 2 >= syncs;
+    add("bus", "SYNC round trip", ok,
+        missing.empty()
+            ? fmt::format("{} SYNCs, {} samples, {} incomplete; answered by drive TPDO1/TPDO2, "
+                          "encoder TPDO1, torque sensor TPDO1",
+                          syncs, samples, incomplete)
+            : fmt::format("{} SYNCs, no answer from {}", syncs, missing));
+
+    std::string load =
+        fmt::format("estimated {:.1f} % of {:.0f} kbit/s at a {} us SYNC", after.bus_load * 100,
+                    config_.can.bitrate / 1e3, std::lround(period * 1e6));
+    if (!config_.description.simulated_clock && real > 0)
+      load += fmt::format(", received {:.1f} %", bits / real / config_.can.bitrate * 100);
+    const bool load_ok = after.bus_load <= config_.can.bus_load_warning;
+    add("bus", "bus load", load_ok,
+        load_ok ? load
+                : load + fmt::format(": above can.bus_load_warning = {:.0f} %",
+                                     config_.can.bus_load_warning * 100));
+  }
+
+  void units_row(const BenchCanopenDevice& drive, bool answering) {
+    std::string text = fmt::format("drive.counts_per_revolution = {} counts per input turn",
+                                   config_.drive.counts_per_revolution);
+    if (answering) {
+      auto& sdo = bench_.master().sdo(drive.node);
+      std::error_code ec;
+      const auto increments = sdo.read<std::uint32_t>(0x608F, 1, ec);
+      std::error_code ec2;
+      const auto revolutions = sdo.read<std::uint32_t>(0x608F, 2, ec2);
+      if (!ec && !ec2) {
+        text += fmt::format("; drive 0x608F: {} increments per {} motor revolution(s)", increments,
+                            revolutions);
+      } else {
+        text += "; 0x608F not readable";
+      }
+    }
+    text += "; velocities in counts/s, accelerations in counts/s^2";
+    add(device_label(drive), "units", true, text);
+  }
+
+  CanopenBench& bench_;
+  const BenchConfig& config_;
+  CheckOptions options_;
+  CheckReport report_;
+};
+
+}  // namespace
+
+bool CheckReport::all_green() const {
+  return !rows.empty() &&
+         std::all_of(rows.begin(), rows.end(), [](const CheckRow& r) { return r.ok; });
+}
+
+CheckReport check_bench(CanopenBench& bench, const CheckOptions& options) {
+  return Check(bench, options).run();
+}
+
+std::string format_check_table(const CheckReport& report) {
+  std::size_t device_width = 6;
+  std::size_t item_width = 4;
+  for (const auto& r : report.rows) {
+    device_width = std::max(device_width, r.device.size());
+    item_width = std::max(item_width, r.item.size());
+  }
+  std::string out = fmt::format("{:<5}  {:<{}}  {:<{}}  {}\n", "", "device", device_width, "item",
+                                item_width, "detail");
+  std::size_t red = 0;
+  for (const auto& r : report.rows) {
+    if (!r.ok) ++red;
+    out += fmt::format("{:<5}  {:<{}}  {:<{}}  {}\n", r.ok ? "ok" : "RED", r.device, device_width,
+                       r.item, item_width, r.detail);
+  }
+  out +=
+      red == 0
+          ? fmt::format("bench '{}': all {} checks green\n", report.bench, report.rows.size())
+          : fmt::format("bench '{}': {} of {} checks red\n", report.bench, red, report.rows.size());
+  return out;
+}
+
+nlohmann::json check_report_json(const CheckReport& report) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& r : report.rows) {
+    rows.push_back({{"device", r.device}, {"item", r.item}, {"ok", r.ok}, {"detail", r.detail}});
+  }
+  return {{"bench", report.bench}, {"all_green", report.all_green()}, {"rows", rows}};
+}
+
+}  // namespace wavebench::bench

@@ -1,0 +1,231 @@
+// The CiA 306 EDS reader: sections, sub-indices, numbers, $NODEID, and hostile files.
+#include "wavebench/canopen/eds.hpp"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "wavebench/canopen/cia402_drive.hpp"
+#include "wavebench/canopen/used_object.hpp"
+
+namespace wavebench::canopen {
+namespace {
+
+const char* kSmall = R"(; a comment line
+[FileInfo]
+FileName=small.eds
+
+[DeviceInfo]
+VendorNumber=0x00000A57
+ProductNumber=1026
+
+[MandatoryObjects]
+SupportedObjects=2
+1=0x1000
+2=0x1018
+
+[1000]
+ParameterName=Device type
+ObjectType=0x7
+DataType=0x0007
+AccessType=const
+DefaultValue=0x00020192
+PDOMapping=0
+
+[1018]
+ParameterName=Identity
+ObjectType=0x9
+SubNumber=2
+
+[1018sub0]
+ParameterName=Highest sub-index
+DataType=0x0005
+AccessType=const
+DefaultValue=1
+
+[1018sub1]
+ParameterName=Vendor-ID
+DataType=0x0007
+AccessType=ro
+DefaultValue=0xA57
+
+[1800]
+ParameterName=TPDO1 communication
+ObjectType=0x9
+SubNumber=1
+
+[1800sub1]
+ParameterName=COB-ID
+DataType=0x0007
+AccessType=RW
+DefaultValue=$NODEID+0x180
+
+[6041]
+parametername=Statusword
+DATATYPE=0x0006
+AccessType=ro
+PDOMapping=1
+LowLimit=0
+HighLimit=0xFFFF
+)";
+
+std::string with(const std::string& section_and_keys) {
+  return std::string(kSmall) + "\n" + section_and_keys + "\n";
+}
+
+std::string error_of(const std::string& text) {
+  try {
+    Eds::parse(text, "test.eds");
+  } catch (const EdsError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(Eds, ReadsVarsRecordsSubIndicesAndDeviceInfo) {
+  const auto eds = Eds::parse(kSmall, "small.eds");
+  ASSERT_NE(eds.find(0x1000, 0), nullptr);
+  EXPECT_EQ(eds.find(0x1000, 0)->data_type, datatype::kUnsigned32);
+  EXPECT_EQ(eds.find(0x1000, 0)->access, EdsAccess::kConst);
+  EXPECT_EQ(*eds.default_integer(*eds.find(0x1000, 0)), 0x00020192);
+  ASSERT_NE(eds.find(0x1018, 1), nullptr);
+  EXPECT_EQ(eds.find(0x1018, 1)->object_type, kObjectRecord);
+  EXPECT_EQ(eds.find(0x1018, 1)->name, "Vendor-ID");
+  EXPECT_EQ(eds.find(0x1018, 2), nullptr);
+  // Keys are case-insensitive; PDOMapping and limits kept.
+  const auto* sw = eds.find(0x6041, 0);
+  ASSERT_NE(sw, nullptr);
+  EXPECT_EQ(sw->name, "Statusword");
+  EXPECT_TRUE(sw->pdo_mapping);
+  EXPECT_EQ(sw->high_limit.value_or(""), "0xFFFF");
+  EXPECT_EQ(eds.find(0x1800, 1)->access, EdsAccess::kRw);
+  EXPECT_EQ(eds.vendor_number(), 0xA57U);
+  EXPECT_EQ(eds.product_number(), 1026U);
+  EXPECT_FALSE(eds.revision_number());
+  EXPECT_TRUE(eds.has_index(0x1018));
+  EXPECT_FALSE(eds.has_index(0x1001));
+}
+
+TEST(Eds, NodeIdExpressions) {
+  const auto eds = Eds::parse(kSmall, "small.eds");
+  EXPECT_EQ(*eds.default_integer(*eds.find(0x1800, 1), 5), 0x185);
+  EXPECT_EQ(parse_eds_integer("$NODEID", 7), 7);
+  EXPECT_EQ(parse_eds_integer("0x80+$nodeid", 3), 0x83);
+  EXPECT_EQ(parse_eds_integer(" $NODEID + 0x200 ", 1), 0x201);
+  EXPECT_EQ(parse_eds_integer("-12"), -12);
+  EXPECT_EQ(parse_eds_integer("010"), 8);  // CiA 306: a leading 0 is octal
+  EXPECT_EQ(parse_eds_integer("0"), 0);
+  for (const char* bad : {"$NODEI+1", "$NODEID*2", "$NODEID+", "1+$NODEID+2", "$NODEID-1",
+                          "$NODEID+$NODEID", "0xZZ", "12abc", "", "08", "99999999999999999999"}) {
+    EXPECT_THROW(parse_eds_integer(bad, 1), std::invalid_argument) << bad;
+  }
+}
+
+TEST(EdsHostile, BadNodeIdExpressionNamesFileSectionKeyAndValue) {
+  const auto e =
+      error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\n"
+                    "DefaultValue=$NODEID*2"));
+  EXPECT_NE(e.find("test.eds"), std::string::npos) << e;
+  EXPECT_NE(e.find("[6060]"), std::string::npos) << e;
+  EXPECT_NE(e.find("DefaultValue"), std::string::npos) << e;
+  EXPECT_NE(e.find("$NODEID*2"), std::string::npos) << e;
+}
+
+TEST(EdsHostile, MissingKeysAreNamed) {
+  auto e = error_of(with("[6060]\nParameterName=Mode\nAccessType=rw"));
+  EXPECT_NE(e.find("[6060] DataType"), std::string::npos) << e;
+  EXPECT_NE(e.find("missing"), std::string::npos) << e;
+  e = error_of(with("[6060]\nDataType=0x0002\nAccessType=rw"));
+  EXPECT_NE(e.find("[6060] ParameterName"), std::string::npos) << e;
+  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002"));
+  EXPECT_NE(e.find("[6060] AccessType"), std::string::npos) << e;
+  e = error_of(with("[2000]\nParameterName=Rec\nObjectType=0x9"));
+  EXPECT_NE(e.find("[2000] SubNumber"), std::string::npos) << e;
+}
+
+TEST(EdsHostile, BadNumbersAndValuesAreNamed) {
+  auto e = error_of(with("[6060]\nParameterName=Mode\nDataType=0xG2\nAccessType=rw"));
+  EXPECT_NE(e.find("[6060] DataType = '0xG2'"), std::string::npos) << e;
+  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=readwrite"));
+  EXPECT_NE(e.find("AccessType = 'readwrite': expected ro, wo, rw"), std::string::npos) << e;
+  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nPDOMapping=2"));
+  EXPECT_NE(e.find("PDOMapping = '2'"), std::string::npos) << e;
+  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nLowLimit=low"));
+  EXPECT_NE(e.find("LowLimit = 'low'"), std::string::npos) << e;
+  e = error_of(with("[2001]\nParameterName=R\nDataType=0x0008\nAccessType=ro\nDefaultValue=1.5e"));
+  EXPECT_NE(e.find("a finite real number"), std::string::npos) << e;
+  e = error_of(with("[2002]\nParameterName=V\nObjectType=0x5\nDataType=0x0007\nAccessType=ro"));
+  EXPECT_NE(e.find("ObjectType = '0x5'"), std::string::npos) << e;
+  e = error_of(with("[2003]\nParameterName=V\nDataType=0x10000\nAccessType=ro"));
+  EXPECT_NE(e.find("DataType = '0x10000'"), std::string::npos) << e;
+}
+
+TEST(EdsHostile, StructureErrorsAreNamed) {
+  // A sub-index without its record, a record whose SubNumber disagrees, duplicates.
+  auto e = error_of(with("[2100sub1]\nParameterName=x\nDataType=0x0007\nAccessType=ro"));
+  EXPECT_NE(e.find("[2100sub1]"), std::string::npos) << e;
+  e =
+      error_of(with("[2100]\nParameterName=R\nObjectType=0x9\nSubNumber=3\n"
+                    "[2100sub0]\nParameterName=n\nDataType=0x0005\nAccessType=const"));
+  EXPECT_NE(e.find("[2100] SubNumber = '3'"), std::string::npos) << e;
+  // A section twice: property_tree's parser names the line.
+  e = error_of(with("[6041]\nParameterName=again\nDataType=0x0006\nAccessType=ro"));
+  EXPECT_NE(e.find("test.eds: line 58: duplicate section"), std::string::npos) << e;
+  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\naccesstype=ro"));
+  EXPECT_NE(e.find("[6060]"), std::string::npos) << e;
+  // A list naming an object that has no section.
+  e = error_of(std::string(kSmall) + "\n[OptionalObjects]\nSupportedObjects=1\n1=0x6502\n");
+  EXPECT_NE(e.find("[OptionalObjects] 1 = '0x6502'"), std::string::npos) << e;
+  // Not INI at all.
+  e = error_of("this is not an EDS\n");
+  EXPECT_NE(e.find("test.eds"), std::string::npos) << e;
+  EXPECT_FALSE(error_of(std::string("[1000]\nParameterName=a\0b", 24)).empty());
+}
+
+TEST(EdsHostile, HugeFileIsRefusedBeforeParsing) {
+  const auto path = std::filesystem::temp_directory_path() / "wavebench_huge_test.eds";
+  {
+    std::ofstream out(path, std::ios::binary);
+    const std::string line = "; padding padding padding padding padding padding padding\n";
+    for (std::size_t n = 0; n <= Eds::kMaxFileBytes / line.size() + 1; ++n) out << line;
+  }
+  try {
+    Eds::load(path);
+    ADD_FAILURE() << "a file over the limit was read";
+  } catch (const EdsError& e) {
+    const std::string what = e.what();
+    EXPECT_NE(what.find(path.string()), std::string::npos) << what;
+    EXPECT_NE(what.find("at most"), std::string::npos) << what;
+  }
+  std::filesystem::remove(path);
+  EXPECT_THROW(Eds::load(path), EdsError);  // gone: unreadable, named
+  EXPECT_THROW(Eds::parse(std::string(Eds::kMaxFileBytes + 1, ';')), EdsError);
+}
+
+TEST(EdsUsedObjects, DisagreementsAreNamed) {
+  const auto eds = Eds::parse(kSmall, "small.eds");
+  const UsedObject used[] = {
+      {0x6041, 0, "statusword", datatype::kUnsigned16, 0, UsedAccess::kRead, UsedInPdo::kTpdo},
+      {0x1000, 0, "device type", datatype::kUnsigned16, 0, UsedAccess::kRead},     // wrong type
+      {0x1018, 1, "vendor-ID", datatype::kUnsigned32, 0, UsedAccess::kReadWrite},  // ro
+      {0x1018, 0, "count", datatype::kUnsigned8, 0, UsedAccess::kRead, UsedInPdo::kTpdo},
+      {0x6081, 0, "profile velocity", datatype::kUnsigned32, 0, UsedAccess::kReadWrite},
+      {0x60F4, 0, "following error", datatype::kInteger32, 0, UsedAccess::kRead, UsedInPdo::kTpdo,
+       true},
+  };
+  const auto problems = check_against_eds(used, eds);
+  ASSERT_EQ(problems.size(), 4U);
+  EXPECT_NE(problems[0].find("0x1000:0 device type: EDS DataType UNSIGNED32, expected UNSIGNED16"),
+            std::string::npos)
+      << problems[0];
+  EXPECT_NE(problems[1].find("0x1018:1 vendor-ID: EDS AccessType ro"), std::string::npos)
+      << problems[1];
+  EXPECT_NE(problems[2].find("0x1018:0 count: EDS PDOMapping 0"), std::string::npos) << problems[2];
+  EXPECT_NE(problems[3].find("0x6081:0 profile velocity: not in the EDS"), std::string::npos)
+      << problems[3];
+}
+
+}  // namespace
+}  // namespace wavebench::canopen
