@@ -193,11 +193,7 @@ void CanopenBench::configure_nodes() {
     map_drive_velocity_pdo(master_->sdo(can.drive_node), drive_channels_);
     check_limits_have_channels(config_.description.limits, drive_channels_);
   });
-  spdlog::info("bench '{}': servo drive units: {} [{}]", config_.description.name,
-               drive_channels_.units.describe(), drive_channels_.units_origin);
-  for (const auto& absent : drive_channels_.absent)
-    spdlog::warn("bench '{}': channel {} absent: {}", config_.description.name, absent.name,
-                 absent.reason);
+  log_drive_channels(config_.description.name, drive_channels_);
   assembler_ = std::make_unique<SampleAssembler>(drive_channels_.units, *encoder_, *torque_,
                                                  drive_channels_.following_error);
   step(can.encoder_node, "TPDO1 (0x6004)", [&] {

@@ -1,5 +1,7 @@
 #include "wavebench/bench/drive_channels.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <cmath>
 #include <cstdio>
 #include <optional>
@@ -152,6 +154,13 @@ void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels) {
                            SampleAssembler::drive_velocity_pdo(sdo.node(), false), ec);
   }
   if (ec) throw std::system_error(ec, "TPDO2 of node " + std::to_string(sdo.node()));
+}
+
+void log_drive_channels(const std::string& bench_name, const DriveChannels& channels) {
+  spdlog::info("bench '{}': servo drive units: {} [{}]", bench_name, channels.units.describe(),
+               channels.units_origin);
+  for (const auto& absent : channels.absent)
+    spdlog::warn("bench '{}': channel {} absent: {}", bench_name, absent.name, absent.reason);
 }
 
 void check_limits_have_channels(const SafetyLimits& limits, const DriveChannels& channels) {

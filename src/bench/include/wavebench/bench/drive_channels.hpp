@@ -47,6 +47,9 @@ DriveChannels read_drive_channels(canopen::SdoClient& sdo, const DriveSettings& 
 // becomes absent. Throws std::system_error when TPDO2 cannot be configured at all.
 void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels);
 
+// The units and where they came from (info), each absent channel with its reason (warning).
+void log_drive_channels(const std::string& bench_name, const DriveChannels& channels);
+
 // Throws std::runtime_error naming the limit and the absent channel it needs.
 void check_limits_have_channels(const SafetyLimits& limits, const DriveChannels& channels);
 
