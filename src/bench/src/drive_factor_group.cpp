@@ -23,9 +23,8 @@ std::string hex(std::uint32_t v, int digits) {
 // A factor object as a ratio, after the checks a drive's answer must pass.
 double ratio(const Fraction& f, std::uint16_t index, const char* name) {
   const auto check = [&](std::uint32_t v, int sub) {
-    const std::string object = hex(index, 4) + ":" +
-                               hex(static_cast<std::uint32_t>(sub), 2).substr(2) + " (" + name +
-                               (sub == 1 ? ", numerator" : ", denominator") + ")";
+    const std::string object = hex(index, 4) + (sub == 1 ? ":01 (" : ":02 (") + name +
+                               (sub == 1 ? ", numerator)" : ", denominator)");
     if (v == 0) refuse(object, "0", "an UNSIGNED32 > 0");
     if (v >= 0x80000000U)
       refuse(object,
