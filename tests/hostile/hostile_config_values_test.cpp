@@ -5,6 +5,8 @@
 #include <unistd.h>
 
 #include <iostream>
+#include <string>
+#include <utility>
 #include <vector>
 
 #include "hostile_cli.hpp"
@@ -206,6 +208,17 @@ TEST(HostileConfigValues, BenchConfigRefusesDisarmedLimitsAndBadText) {
                    with_line(bench_config(), "  max_input_speed:",
                              "  max_input_speed: \"3000 rpm\"\n  max_input_speed: \"9000 rpm\""),
                    "safety.max_input_speed"});
+  // The drive's units (issue #9): a misspelt unit, a negative factor, a zero torque scale.
+  for (const auto& [key, value] :
+       std::vector<std::pair<std::string, std::string>>{{"velocity_unit", "rmp"},
+                                                        {"position_unit", "\"-1 deg\""},
+                                                        {"acceleration_unit", "rpm"},
+                                                        {"torque_actual_scale", "\"0 N*m\""}}) {
+    cases.push_back({"drive." + key + " " + value,
+                     with_line(bench_config(), "  counts_per_revolution:",
+                               "  counts_per_revolution: 131072\n  " + key + ": " + value),
+                     "drive." + key});
+  }
   int tried = 0, refused = 0;
   for (const auto& c : cases) {
     ASSERT_NE(c.text, bench_config()) << c.label << ": the edit must change the config";

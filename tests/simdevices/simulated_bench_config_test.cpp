@@ -58,3 +58,48 @@ TEST(SimulatedBenchConfig, BadValuesNameKeyValueAndExpectation) {
 
 }  // namespace
 }  // namespace wavebench::simdevices
+
+namespace wavebench::simdevices {
+namespace {
+
+TEST(SimulatedBenchConfig, DriveUnitsFactorGroupAndAbsentObjects) {
+  const auto c = parse_simulated_bench_config(R"(
+simbench:
+  drive:
+    velocity_unit: factor_group
+    factor_group: {gear_ratio: [3, 1], feed_constant: [360000, 1],
+                   velocity_encoder_resolution: [4096, 1]}
+    absent_objects: ["0x60F4", "0x6077"]
+)");
+  EXPECT_EQ(c.drive.velocity_unit, DriveVelocityUnit::kFactorGroup);
+  EXPECT_EQ(c.drive.factor_group.gear_motor_revolutions, 3u);
+  EXPECT_EQ(c.drive.factor_group.feed, 360000u);
+  EXPECT_EQ(c.drive.factor_group.velocity_encoder_increments, 4096u);
+  EXPECT_EQ(c.drive.factor_group.position_encoder_increments, 131072u);  // default
+  EXPECT_FALSE(c.drive.has(0x60F4));
+  EXPECT_FALSE(c.drive.has(0x6077));
+  EXPECT_TRUE(c.drive.has(0x6064));
+  EXPECT_EQ(parse_simulated_bench_config("simbench: {drive: {velocity_unit: \"0.1 rpm\"}}")
+                .drive.velocity_unit,
+            DriveVelocityUnit::kDeciRpm);
+}
+
+TEST(SimulatedBenchConfig, BadDriveUnitsNameKeyValueAndExpectation) {
+  expect_message("simbench: {drive: {velocity_unit: rmp}}",
+                 "simbench.drive.velocity_unit = 'rmp' (expected counts/s, rpm, 0.1 rpm or "
+                 "factor_group)");
+  expect_message("simbench: {drive: {absent_objects: [\"0x6064\"]}}",
+                 "simbench.drive.absent_objects = '0x6064'");
+  expect_message("simbench: {drive: {absent_objects: \"0x60F4\"}}",
+                 "simbench.drive.absent_objects = '0x60F4' (expected a list");
+  expect_message("simbench: {drive: {factor_group: {gear_ratio: [3]}}}",
+                 "simbench.drive.factor_group.gear_ratio = a list (expected [numerator, "
+                 "denominator]");
+  expect_message("simbench: {drive: {factor_group: {feed_constant: [-1, 1]}}}",
+                 "simbench.drive.factor_group.feed_constant");
+  expect_message("simbench: {drive: {factor_group: {feed: [1, 1]}}}",
+                 "simbench.drive.factor_group.feed = ");
+}
+
+}  // namespace
+}  // namespace wavebench::simdevices

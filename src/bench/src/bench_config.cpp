@@ -277,11 +277,46 @@ void apply_eds_defaults(const YAML::Node& root, BenchConfig& c) {
   }
 }
 
+void read_drive_units(const YAML::Node& n, DriveSettings& d) {
+  const auto unit = [&](const char* key, DriveQuantity q, DriveUnitChoice& out) {
+    optional(n, key, [&](const YAML::Node& v) {
+      const std::string name = std::string("drive.") + key;
+      const auto t = text(v, name);
+      try {
+        out = parse_drive_unit(t, q);
+      } catch (const std::invalid_argument& e) {
+        throw ConfigError(name, t, e.what());
+      }
+    });
+  };
+  unit("position_unit", DriveQuantity::kPosition, d.position_unit);
+  unit("velocity_unit", DriveQuantity::kVelocity, d.velocity_unit);
+  unit("acceleration_unit", DriveQuantity::kAcceleration, d.acceleration_unit);
+  optional(n, "torque_actual_scale", [&](const YAML::Node& v) {
+    const auto t = text(v, "drive.torque_actual_scale");
+    if (t == "rated") {
+      d.torque_actual_nm_per_unit.reset();
+      return;
+    }
+    const std::string expected =
+        "rated (per mille of the drive's rated torque 0x6076) or a torque > 0 per unit of 0x6077 "
+        "(\"0.001 N*m\")";
+    double scale = 0;
+    try {
+      scale = config::parse_quantity(t, Dimension::kTorque, "drive.torque_actual_scale");
+    } catch (const ConfigError&) {
+      throw ConfigError("drive.torque_actual_scale", t, expected);
+    }
+    if (!(scale > 0)) throw ConfigError("drive.torque_actual_scale", t, expected);
+    d.torque_actual_nm_per_unit = scale;
+  });
+}
+
 void read_devices(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
   optional(root, "drive", [&](const YAML::Node& n) {
-    check_keys(
-        n, "drive",
-        {"counts_per_revolution", "profile_acceleration", "target_settle", "eds", "identity"});
+    check_keys(n, "drive",
+               {"counts_per_revolution", "profile_acceleration", "target_settle", "position_unit",
+                "velocity_unit", "acceleration_unit", "torque_actual_scale", "eds", "identity"});
     read_expectations(n, "drive", base, c.drive.expect);
     optional(n, "counts_per_revolution", [&](const YAML::Node& v) {
       c.drive.counts_per_revolution =
@@ -294,6 +329,7 @@ void read_devices(const YAML::Node& root, BenchConfig& c, const std::filesystem:
       c.drive.target_settle_s = bounded_quantity(v, Dimension::kTime, "drive.target_settle", 0, 60,
                                                  "a time in [0, 60 s]");
     });
+    read_drive_units(n, c.drive);
   });
   optional(root, "encoder", [&](const YAML::Node& n) {
     check_keys(n, "encoder", {"counts_per_turn", "turns", "noise", "eds", "identity"});

@@ -44,6 +44,7 @@ class ForwardingBench : public Bench {
   void add_observer(SampleObserver& o) override { inner_->add_observer(o); }
   void remove_observer(SampleObserver& o) override { inner_->remove_observer(o); }
   AcquisitionStats acquisition_stats() const override { return inner_->acquisition_stats(); }
+  std::vector<std::string> absent_channels() const override { return inner_->absent_channels(); }
   void request_stop(const std::string& reason) noexcept override { inner_->request_stop(reason); }
 
   CanopenBench& canopen_bench() { return *inner_; }

@@ -39,7 +39,6 @@ CanopenBench::CanopenBench(BenchConfig config, can::CanBus& bus)
     : config_(std::move(config)),
       bus_(bus),
       io_(bus.context()),
-      scaling_(config_.drive.counts_per_revolution),
       limits_check_(config_.description.limits, config_.description.sense),
       cycle_timer_(bus.context()) {
   config_.description.sense.validate();
@@ -211,7 +210,8 @@ void CanopenBench::configure_nodes() {
   torque_ = std::make_unique<canopen::TorqueSensor>(master_->sdo(can.torque_node),
                                                     config_.torque_sensor.sensor);
   drive_ = std::make_unique<canopen::Cia402Drive>(master_->sdo(can.drive_node));
-  assembler_ = std::make_unique<SampleAssembler>(scaling_, *encoder_, *torque_);
+  step(can.drive_node, "units and optional objects",
+       [&] { drive_channels_ = read_drive_channels(master_->sdo(can.drive_node), config_.drive); });
 
   using canopen::PdoDirection;
   step(can.drive_node, "TPDO1 (statusword, position)", [&] {
@@ -219,9 +219,12 @@ void CanopenBench::configure_nodes() {
                            SampleAssembler::drive_position_pdo(can.drive_node));
   });
   step(can.drive_node, "TPDO2 (velocity, following error)", [&] {
-    canopen::configure_pdo(master_->sdo(can.drive_node), PdoDirection::transmit, 2,
-                           SampleAssembler::drive_velocity_pdo(can.drive_node));
+    map_drive_velocity_pdo(master_->sdo(can.drive_node), drive_channels_);
+    check_limits_have_channels(config_.description.limits, drive_channels_);
   });
+  log_drive_channels(config_.description.name, drive_channels_);
+  assembler_ = std::make_unique<SampleAssembler>(drive_channels_.units, *encoder_, *torque_,
+                                                 drive_channels_.following_error);
   step(can.encoder_node, "TPDO1 (0x6004)", [&] {
     canopen::configure_pdo(master_->sdo(can.encoder_node), PdoDirection::transmit, 1,
                            SampleAssembler::encoder_pdo(can.encoder_node));
@@ -277,7 +280,8 @@ void CanopenBench::configure_nodes() {
 
   // Bus load: SYNC + the cycle's PDOs every period, heartbeats of three nodes.
   const double per_cycle =
-      frame_bits(0) + frame_bits(6) + frame_bits(8) + frame_bits(4) +
+      frame_bits(0) + frame_bits(6) + frame_bits(drive_channels_.following_error ? 8 : 4) +
+      frame_bits(4) +
       frame_bits(static_cast<unsigned>(canopen::size_of(config_.torque_sensor.sensor.type)));
   double extra_bits = 0;
   for (const auto& d : channel_devices_) {
@@ -847,12 +851,13 @@ void CanopenBench::move_input_to(double theta_in_rad, double speed_rad_s) {
                                 " rad/s: above the limit safety.max_input_speed = " +
                                 std::to_string(limits.max_input_speed_rad_s) + " rad/s");
   canopen::ProfileMove move;
-  move.target = scaling_.position_counts(theta_in_rad, "move_input_to target");
+  const auto& units = drive_channels_.units;
+  move.target = units.position_value(theta_in_rad, "move_input_to target");
   move.profile_velocity = static_cast<std::uint32_t>(
-      std::max(1, scaling_.velocity_counts(speed_rad_s, "move_input_to speed")));
+      std::max(1, units.velocity_value(speed_rad_s, "move_input_to speed")));
   if (config_.drive.profile_acceleration_rad_s2 > 0) {
-    const auto a = static_cast<std::uint32_t>(scaling_.velocity_counts(
-        config_.drive.profile_acceleration_rad_s2, "drive.profile_acceleration"));
+    const auto a = units.acceleration_value(config_.drive.profile_acceleration_rad_s2,
+                                            "drive.profile_acceleration");
     move.acceleration = a;
     move.deceleration = a;
   }
@@ -884,10 +889,11 @@ void CanopenBench::run_input_velocity(double omega_in_rad_s) {
     throw std::invalid_argument("run_input_velocity: omega = " + std::to_string(omega_in_rad_s) +
                                 " rad/s: expected |omega| <= safety.max_input_speed = " +
                                 std::to_string(limits.max_input_speed_rad_s) + " rad/s");
-  const auto counts = scaling_.velocity_counts(omega_in_rad_s, "run_input_velocity omega");
+  const auto velocity =
+      drive_channels_.units.velocity_value(omega_in_rad_s, "run_input_velocity omega");
   activate();
   set_mode(canopen::OperationMode::profile_velocity);
-  drive_command("target velocity", [&] { drive_->set_target_velocity(counts); });
+  drive_command("target velocity", [&] { drive_->set_target_velocity(velocity); });
 }
 
 void CanopenBench::stop_motion() {

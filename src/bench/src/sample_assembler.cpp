@@ -7,23 +7,26 @@
 namespace wavebench::bench {
 namespace {
 const std::vector<canopen::PdoEntry> kDrivePositionMapping{{0x6041, 0, 16}, {0x6064, 0, 32}};
-const std::vector<canopen::PdoEntry> kDriveVelocityMapping{{0x606C, 0, 32}, {0x60F4, 0, 32}};
+std::vector<canopen::PdoEntry> drive_velocity_mapping(bool following_error) {
+  if (following_error) return {{0x606C, 0, 32}, {0x60F4, 0, 32}};
+  return {{0x606C, 0, 32}};
+}
 }  // namespace
 
-SampleAssembler::SampleAssembler(InputShaftScaling scaling, canopen::Cia406Encoder& encoder,
-                                 const canopen::TorqueSensor& torque)
-    : scaling_(scaling),
+SampleAssembler::SampleAssembler(DriveUnits units, canopen::Cia406Encoder& encoder,
+                                 const canopen::TorqueSensor& torque, bool following_error)
+    : units_(units),
       encoder_(encoder),
       torque_(torque),
       drive_position_layout_(kDrivePositionMapping),
-      drive_velocity_layout_(kDriveVelocityMapping),
+      drive_velocity_layout_(drive_velocity_mapping(following_error)),
       torque_layout_({canopen::PdoEntry::decode(torque.mapping_entry())}) {}
 
 canopen::PdoConfig SampleAssembler::drive_position_pdo(std::uint8_t node) {
   return {canopen::tpdo_cob_id(1, node), 1, 0, kDrivePositionMapping};
 }
-canopen::PdoConfig SampleAssembler::drive_velocity_pdo(std::uint8_t node) {
-  return {canopen::tpdo_cob_id(2, node), 1, 0, kDriveVelocityMapping};
+canopen::PdoConfig SampleAssembler::drive_velocity_pdo(std::uint8_t node, bool following_error) {
+  return {canopen::tpdo_cob_id(2, node), 1, 0, drive_velocity_mapping(following_error)};
 }
 canopen::PdoConfig SampleAssembler::encoder_pdo(std::uint8_t node) {
   return {canopen::tpdo_cob_id(1, node), 1, 0, {{0x6004, 0, 32}}};
@@ -63,7 +66,7 @@ bool SampleAssembler::on_drive_position(const can::Frame& frame) {
   drive_.statusword = static_cast<std::uint16_t>(drive_position_layout_.raw(frame, 0));
   drive_.status_valid = true;
   const auto raw = static_cast<std::int32_t>(drive_position_layout_.signed_value(frame, 1));
-  sample_.theta_in_rad = scaling_.angle(static_cast<double>(drive_position_.update(raw)));
+  sample_.theta_in_rad = units_.angle(static_cast<double>(drive_position_.update(raw)));
   sample_.flags |= storage::kThetaInValid;
   return true;
 }
@@ -71,11 +74,13 @@ bool SampleAssembler::on_drive_position(const can::Frame& frame) {
 bool SampleAssembler::on_drive_velocity(const can::Frame& frame) {
   if (!drive_velocity_layout_.fits(frame) || !take(kDriveVelocity)) return false;
   sample_.input_speed_rad_s =
-      scaling_.speed(static_cast<double>(drive_velocity_layout_.signed_value(frame, 0)));
+      units_.speed(static_cast<double>(drive_velocity_layout_.signed_value(frame, 0)));
   sample_.flags |= storage::kInputSpeedValid;
-  drive_.following_error_rad =
-      scaling_.angle(static_cast<double>(drive_velocity_layout_.signed_value(frame, 1)));
-  drive_.following_error_valid = true;
+  if (drive_velocity_layout_.size() > 1) {
+    drive_.following_error_rad =
+        units_.angle(static_cast<double>(drive_velocity_layout_.signed_value(frame, 1)));
+    drive_.following_error_valid = true;
+  }
   return true;
 }
 

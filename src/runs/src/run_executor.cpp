@@ -130,6 +130,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
        {{"ratio", description.sense.ratio}, {"direction_sign", description.sense.direction_sign}}},
       {"sync_period_s", description.sync_period_s},
       {"simulated_clock", description.simulated_clock},
+      {"absent_channels", bench.absent_channels()},
       {"options", parsed.procedure_options},
       {"limits", parsed.limits}};
   ProcedureResult procedure_result;

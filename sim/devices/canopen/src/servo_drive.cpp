@@ -46,13 +46,81 @@ bool is_position_mode(Cia402Mode m) {
   return m == Cia402Mode::kProfilePosition || m == Cia402Mode::kCyclicSyncPosition;
 }
 
+// A window or threshold in object units: at least 1, so that a coarse unit does not close it.
+template <typename T>
+T window_out(double value) {
+  return static_cast<T>(
+      std::clamp(std::round(value), 1.0, static_cast<double>(std::numeric_limits<T>::max())));
+}
+
+template <typename T>
+T unsigned_out(double value) {
+  return static_cast<T>(
+      std::clamp(std::round(value), 0.0, static_cast<double>(std::numeric_limits<T>::max())));
+}
+
 }  // namespace
 
+bool ServoDriveConfig::has(std::uint16_t index) const {
+  return std::find(absent_objects.begin(), absent_objects.end(), index) == absent_objects.end();
+}
+
+DriveObjectUnits ServoDriveConfig::object_units() const {
+  const double cpr = counts_per_revolution;
+  switch (velocity_unit) {
+    case DriveVelocityUnit::kCounts:
+      return {};
+    case DriveVelocityUnit::kRpm:
+      return {1, 60 / cpr, 60 / cpr};
+    case DriveVelocityUnit::kDeciRpm:
+      return {1, 600 / cpr, 600 / cpr};
+    case DriveVelocityUnit::kFactorGroup:
+      break;
+  }
+  // CiA 402 factor group: position factor = encoder resolution x gear ratio / feed constant
+  // converts a user unit into encoder increments (0x608F per motor revolution); likewise the
+  // velocity encoder factor with 0x6090. Our increments are counts_per_revolution per motor
+  // revolution, so they go to motor revolutions first.
+  const auto& f = factor_group;
+  const auto ratio = [](std::uint32_t n, std::uint32_t d) {
+    return d == 0 ? 0.0 : static_cast<double>(n) / d;
+  };
+  const double gear = ratio(f.gear_motor_revolutions, f.gear_shaft_revolutions);
+  const double feed = ratio(f.feed, f.feed_shaft_revolutions);
+  const double pos_res = ratio(f.position_encoder_increments, f.position_encoder_revolutions);
+  const double vel_res = ratio(f.velocity_encoder_increments, f.velocity_encoder_revolutions);
+  const double position_factor = pos_res * gear / feed;  // 0x608F increments per user unit
+  const double velocity_factor = vel_res * gear / feed;  // 0x6090 increments/s per user unit/s
+  DriveObjectUnits u;
+  u.position = pos_res / cpr / position_factor;
+  u.velocity = vel_res / cpr / velocity_factor;
+  u.acceleration = u.velocity;
+  // A factor group with a zero in it defines no units: the model then runs on increments
+  // while its objects show the zero (a master must refuse such a drive).
+  if (!(std::isfinite(u.position) && u.position > 0 && std::isfinite(u.velocity) && u.velocity > 0))
+    return {};
+  return u;
+}
+
+std::int32_t Cia402ServoDrive::position_out(double increments) const {
+  return wrap_to_int32(increments * units_.position);
+}
+
+std::int32_t Cia402ServoDrive::velocity_out(double increments_per_s) const {
+  return wrap_to_int32(increments_per_s * units_.velocity);
+}
+
 Cia402ServoDrive::Cia402ServoDrive(const ServoDriveConfig& config, FrameSink sink)
-    : CanopenNode(config.node_id, config.identity, std::move(sink)), config_(config) {
+    : CanopenNode(config.node_id, config.identity, std::move(sink)),
+      config_(config),
+      units_(config.object_units()) {
   add_profile_objects();
   set_default_tpdo(1, {{0x6041, 0, 16}, {0x6064, 0, 32}}, true, 1);
-  set_default_tpdo(2, {{0x606C, 0, 32}, {0x6077, 0, 16}}, true, 1);
+  if (config_.has(0x6077)) {
+    set_default_tpdo(2, {{0x606C, 0, 32}, {0x6077, 0, 16}}, true, 1);
+  } else {
+    set_default_tpdo(2, {{0x606C, 0, 32}}, true, 1);
+  }
   set_default_rpdo(1, {{0x6040, 0, 16}}, true, 255);
   set_default_rpdo(2, {{0x6040, 0, 16}, {0x607A, 0, 32}}, false, 1);
   set_default_rpdo(3, {{0x6040, 0, 16}, {0x60FF, 0, 32}}, false, 1);
@@ -91,53 +159,77 @@ void Cia402ServoDrive::add_profile_objects() {
                             true);
   d.add_value<std::int32_t>(0x6064, 0, "position actual value", DT::kInteger32, A::kReadOnly, 0,
                             true);
-  d.add_value<std::uint32_t>(0x6065, 0, "following error window", DT::kUnsigned32, A::kReadWrite,
-                             c.following_error_window);
+  d.add_value<std::uint32_t>(
+      0x6065, 0, "following error window", DT::kUnsigned32, A::kReadWrite,
+      c.following_error_window == 0xFFFFFFFFU
+          ? c.following_error_window
+          : window_out<std::uint32_t>(c.following_error_window * units_.position));
   d.add_value<std::uint16_t>(0x6066, 0, "following error time out", DT::kUnsigned16, A::kReadWrite,
                              c.following_error_timeout_ms);
   d.add_value<std::uint32_t>(0x6067, 0, "position window", DT::kUnsigned32, A::kReadWrite,
-                             c.position_window);
+                             window_out<std::uint32_t>(c.position_window * units_.position));
   d.add_value<std::uint16_t>(0x6068, 0, "position window time", DT::kUnsigned16, A::kReadWrite,
                              c.position_window_time_ms);
   d.add_value<std::int32_t>(0x606C, 0, "velocity actual value", DT::kInteger32, A::kReadOnly, 0,
                             true);
   d.add_value<std::uint16_t>(0x606D, 0, "velocity window", DT::kUnsigned16, A::kReadWrite,
-                             c.velocity_window);
+                             window_out<std::uint16_t>(c.velocity_window * units_.velocity));
   d.add_value<std::uint16_t>(0x606E, 0, "velocity window time", DT::kUnsigned16, A::kReadWrite,
                              c.velocity_window_time_ms);
   d.add_value<std::uint16_t>(0x606F, 0, "velocity threshold", DT::kUnsigned16, A::kReadWrite,
-                             c.velocity_threshold);
+                             window_out<std::uint16_t>(c.velocity_threshold * units_.velocity));
   d.add_value<std::uint16_t>(0x6072, 0, "max torque", DT::kUnsigned16, A::kReadWrite,
                              c.max_torque_permille, true);
   d.add_value<std::uint32_t>(0x6076, 0, "motor rated torque [mN*m]", DT::kUnsigned32, A::kReadOnly,
                              static_cast<std::uint32_t>(std::lround(c.rated_torque_nm * 1000)));
-  d.add_value<std::int16_t>(0x6077, 0, "torque actual value", DT::kInteger16, A::kReadOnly, 0,
-                            true);
+  if (c.has(0x6077))
+    d.add_value<std::int16_t>(0x6077, 0, "torque actual value", DT::kInteger16, A::kReadOnly, 0,
+                              true);
   d.add_value<std::int32_t>(0x607A, 0, "target position", DT::kInteger32, A::kReadWrite, 0, true);
   d.add_value<std::uint8_t>(0x607D, 0, "software position limit", DT::kUnsigned8, A::kConst, 2);
   d.add_value<std::int32_t>(0x607D, 1, "min position limit", DT::kInteger32, A::kReadWrite, 0);
   d.add_value<std::int32_t>(0x607D, 2, "max position limit", DT::kInteger32, A::kReadWrite, 0);
-  const auto max_speed_inc = static_cast<std::uint32_t>(
-      std::min<double>(c.max_motor_speed_rpm / 60.0 * c.counts_per_revolution,
-                       std::numeric_limits<std::uint32_t>::max()));
+  const auto max_speed_inc = unsigned_out<std::uint32_t>(c.max_motor_speed_rpm / 60.0 *
+                                                         c.counts_per_revolution * units_.velocity);
   d.add_value<std::uint32_t>(0x607F, 0, "max profile velocity", DT::kUnsigned32, A::kReadWrite,
                              max_speed_inc, true);
   d.add_value<std::uint32_t>(0x6080, 0, "max motor speed [rpm]", DT::kUnsigned32, A::kReadWrite,
                              c.max_motor_speed_rpm);
   d.add_value<std::uint32_t>(0x6081, 0, "profile velocity", DT::kUnsigned32, A::kReadWrite,
-                             c.profile_velocity, true);
-  d.add_value<std::uint32_t>(0x6083, 0, "profile acceleration", DT::kUnsigned32, A::kReadWrite,
-                             c.profile_acceleration, true);
-  d.add_value<std::uint32_t>(0x6084, 0, "profile deceleration", DT::kUnsigned32, A::kReadWrite,
-                             c.profile_deceleration, true);
-  d.add_value<std::uint32_t>(0x6085, 0, "quick stop deceleration", DT::kUnsigned32, A::kReadWrite,
-                             c.quick_stop_deceleration);
-  d.add_value<std::uint8_t>(0x608F, 0, "position encoder resolution", DT::kUnsigned8, A::kConst, 2);
-  d.add_value<std::uint32_t>(0x608F, 1, "encoder increments", DT::kUnsigned32, A::kReadOnly,
-                             c.counts_per_revolution);
-  d.add_value<std::uint32_t>(0x608F, 2, "motor revolutions", DT::kUnsigned32, A::kReadOnly, 1);
-  d.add_value<std::int32_t>(0x60F4, 0, "following error actual value", DT::kInteger32, A::kReadOnly,
-                            0, true);
+                             unsigned_out<std::uint32_t>(c.profile_velocity * units_.velocity),
+                             true);
+  d.add_value<std::uint32_t>(
+      0x6083, 0, "profile acceleration", DT::kUnsigned32, A::kReadWrite,
+      unsigned_out<std::uint32_t>(c.profile_acceleration * units_.acceleration), true);
+  d.add_value<std::uint32_t>(
+      0x6084, 0, "profile deceleration", DT::kUnsigned32, A::kReadWrite,
+      unsigned_out<std::uint32_t>(c.profile_deceleration * units_.acceleration), true);
+  d.add_value<std::uint32_t>(
+      0x6085, 0, "quick stop deceleration", DT::kUnsigned32, A::kReadWrite,
+      unsigned_out<std::uint32_t>(c.quick_stop_deceleration * units_.acceleration));
+  const bool factor_group = c.velocity_unit == DriveVelocityUnit::kFactorGroup;
+  const auto& f = c.factor_group;
+  const auto fraction = [&](std::uint16_t index, const char* name, const char* num, std::uint32_t n,
+                            const char* den, std::uint32_t dv) {
+    d.add_value<std::uint8_t>(index, 0, name, DT::kUnsigned8, A::kConst, 2);
+    d.add_value<std::uint32_t>(index, 1, num, DT::kUnsigned32, A::kReadOnly, n);
+    d.add_value<std::uint32_t>(index, 2, den, DT::kUnsigned32, A::kReadOnly, dv);
+  };
+  fraction(0x608F, "position encoder resolution", "encoder increments",
+           factor_group ? f.position_encoder_increments : c.counts_per_revolution,
+           "motor revolutions", factor_group ? f.position_encoder_revolutions : 1);
+  if (factor_group) {
+    fraction(0x6090, "velocity encoder resolution", "encoder increments per second",
+             f.velocity_encoder_increments, "motor revolutions per second",
+             f.velocity_encoder_revolutions);
+    fraction(0x6091, "gear ratio", "motor shaft revolutions", f.gear_motor_revolutions,
+             "driving shaft revolutions", f.gear_shaft_revolutions);
+    fraction(0x6092, "feed constant", "feed", f.feed, "driving shaft revolutions",
+             f.feed_shaft_revolutions);
+  }
+  if (c.has(0x60F4))
+    d.add_value<std::int32_t>(0x60F4, 0, "following error actual value", DT::kInteger32,
+                              A::kReadOnly, 0, true);
   d.add_value<std::int32_t>(0x60FF, 0, "target velocity", DT::kInteger32, A::kReadWrite, 0, true);
   // Supported drive modes: PP (bit 0), PV (bit 2), CSP (bit 7), CSV (bit 8).
   d.add_value<std::uint32_t>(0x6502, 0, "supported drive modes", DT::kUnsigned32, A::kReadOnly,
@@ -246,7 +338,7 @@ void Cia402ServoDrive::on_controlword() {
 }
 
 void Cia402ServoDrive::start_new_set_point(std::uint16_t cw) {
-  const double raw = od().get<std::int32_t>(0x607A, 0);
+  const double raw = position_in(od().get<std::int32_t>(0x607A, 0));
   const double target = clamp_to_software_limits((cw & kRelative) ? pp_target_ + raw : raw);
   if (profile_done_ || (cw & kChangeImmediately)) {
     pp_target_ = target;
@@ -267,7 +359,7 @@ double Cia402ServoDrive::clamp_to_software_limits(double position) {
   const auto lo = od().get<std::int32_t>(0x607D, 1);
   const auto hi = od().get<std::int32_t>(0x607D, 2);
   if (lo == 0 && hi == 0) return position;  // limits off
-  const double clamped = std::clamp(position, static_cast<double>(lo), static_cast<double>(hi));
+  const double clamped = std::clamp(position, position_in(lo), position_in(hi));
   if (clamped != position) limit_active_ = true;
   return clamped;
 }
@@ -281,21 +373,22 @@ void Cia402ServoDrive::on_sync(double now) {
   last_sync_ = now;
   if (active_mode_ == Cia402Mode::kCyclicSyncPosition) {
     csp_from_ = profile_.position();
-    csp_to_ = clamp_to_software_limits(od().get<std::int32_t>(0x607A, 0));
+    csp_to_ = clamp_to_software_limits(position_in(od().get<std::int32_t>(0x607A, 0)));
     csp_elapsed_ = 0;
   }
 }
 
 double Cia402ServoDrive::motion_demand(double dt, double& velocity_ff) {
   auto& d = od();
-  const double acc = d.get<std::uint32_t>(0x6083, 0);
-  const double dec = d.get<std::uint32_t>(0x6084, 0);
-  const double max_profile = d.get<std::uint32_t>(0x607F, 0);
+  const double acc = acceleration_in(d.get<std::uint32_t>(0x6083, 0));
+  const double dec = acceleration_in(d.get<std::uint32_t>(0x6084, 0));
+  const double max_profile = velocity_in(d.get<std::uint32_t>(0x607F, 0));
   const bool halt = d.get<std::uint16_t>(0x6040, 0) & kHalt;
 
   if (machine_.state() == Cia402State::kQuickStopActive) {
     const auto option = d.get<std::int16_t>(0x605A, 0);
-    const double qs_dec = (option == 1 || option == 5) ? dec : d.get<std::uint32_t>(0x6085, 0);
+    const double qs_dec =
+        (option == 1 || option == 5) ? dec : acceleration_in(d.get<std::uint32_t>(0x6085, 0));
     profile_.step_to_velocity(0, qs_dec, qs_dec, dt);
     if (profile_.velocity() == 0) machine_.quick_stop_done(option >= 0 && option <= 4);
     velocity_ff = profile_.velocity();
@@ -306,7 +399,7 @@ double Cia402ServoDrive::motion_demand(double dt, double& velocity_ff) {
       if (halt) {
         profile_.step_to_velocity(0, acc, dec, dt);
       } else if (!profile_done_) {
-        const double v = std::min<double>(d.get<std::uint32_t>(0x6081, 0), max_profile);
+        const double v = std::min(velocity_in(d.get<std::uint32_t>(0x6081, 0)), max_profile);
         if (profile_.step_to_position(pp_target_, v, acc, dec, dt)) {
           profile_done_ = true;
           if (pp_buffered_) {
@@ -320,7 +413,7 @@ double Cia402ServoDrive::motion_demand(double dt, double& velocity_ff) {
       break;
     case Cia402Mode::kProfileVelocity: {
       const double target =
-          std::clamp<double>(d.get<std::int32_t>(0x60FF, 0), -max_profile, max_profile);
+          std::clamp(velocity_in(d.get<std::int32_t>(0x60FF, 0)), -max_profile, max_profile);
       profile_.step_to_velocity(halt ? 0 : target, acc, dec, dt);
       break;
     }
@@ -332,7 +425,7 @@ double Cia402ServoDrive::motion_demand(double dt, double& velocity_ff) {
       break;
     }
     case Cia402Mode::kCyclicSyncVelocity: {
-      const double v = d.get<std::int32_t>(0x60FF, 0);
+      const double v = velocity_in(d.get<std::int32_t>(0x60FF, 0));
       profile_.reset(profile_.position() + v * dt, v);
       break;
     }
@@ -392,9 +485,10 @@ double Cia402ServoDrive::control(const PlantState& plant, double dt) {
 
   // Following error supervision in the position modes.
   const double following = p_demand - actual_position_;
-  od().set<std::int32_t>(0x60F4, 0, wrap_to_int32(following));
+  if (config_.has(0x60F4)) od().set<std::int32_t>(0x60F4, 0, position_out(following));
   const auto window = od().get<std::uint32_t>(0x6065, 0);
-  if (is_position_mode(active_mode_) && window != 0xFFFFFFFFU && std::abs(following) > window) {
+  if (is_position_mode(active_mode_) && window != 0xFFFFFFFFU &&
+      std::abs(following) > position_in(window)) {
     following_error_time_ += dt;
     if (following_error_time_ * 1000 > od().get<std::uint16_t>(0x6066, 0)) {
       following_error_ = true;
@@ -419,15 +513,16 @@ void Cia402ServoDrive::update_target_reached(double position, double velocity, d
         target_reached_ = profile_.velocity() == 0;
         return;
       }
-      const bool inside =
-          profile_done_ && std::abs(pp_target_ - position) <= d.get<std::uint32_t>(0x6067, 0);
+      const bool inside = profile_done_ && std::abs(pp_target_ - position) <=
+                                               position_in(d.get<std::uint32_t>(0x6067, 0));
       in_window_time_ = inside ? in_window_time_ + dt : 0;
       target_reached_ = inside && in_window_time_ * 1000 >= d.get<std::uint16_t>(0x6068, 0);
       return;
     }
     case Cia402Mode::kProfileVelocity: {
-      const double target = halt ? 0.0 : d.get<std::int32_t>(0x60FF, 0);
-      const bool inside = std::abs(velocity - target) <= d.get<std::uint16_t>(0x606D, 0);
+      const double target = halt ? 0.0 : velocity_in(d.get<std::int32_t>(0x60FF, 0));
+      const bool inside =
+          std::abs(velocity - target) <= velocity_in(d.get<std::uint16_t>(0x606D, 0));
       in_window_time_ = inside ? in_window_time_ + dt : 0;
       target_reached_ = inside && in_window_time_ * 1000 >= d.get<std::uint16_t>(0x606E, 0);
       return;
@@ -443,18 +538,20 @@ void Cia402ServoDrive::observe(const PlantState& plant) {
   actual_position_ = plant.theta_in * cpr;
   actual_velocity_ = plant.omega_in * cpr;
   auto& d = od();
-  d.set<std::int32_t>(0x6064, 0, wrap_to_int32(actual_position_));
-  d.set<std::int32_t>(0x606C, 0, wrap_to_int32(actual_velocity_));
+  d.set<std::int32_t>(0x6064, 0, position_out(actual_position_));
+  d.set<std::int32_t>(0x606C, 0, velocity_out(actual_velocity_));
 }
 
 void Cia402ServoDrive::update_outputs(const PlantState& /*plant*/) {
   auto& d = od();
-  d.set<std::int32_t>(0x6064, 0, wrap_to_int32(actual_position_));
-  d.set<std::int32_t>(0x606C, 0, wrap_to_int32(actual_velocity_));
-  d.set<std::int32_t>(0x6062, 0, wrap_to_int32(profile_.position()));
-  const double rated = d.get<std::uint32_t>(0x6076, 0) / 1000.0;
-  const double permille = std::clamp(std::round(torque_ / rated * 1000), -32768.0, 32767.0);
-  d.set<std::int16_t>(0x6077, 0, static_cast<std::int16_t>(permille));
+  d.set<std::int32_t>(0x6064, 0, position_out(actual_position_));
+  d.set<std::int32_t>(0x606C, 0, velocity_out(actual_velocity_));
+  d.set<std::int32_t>(0x6062, 0, position_out(profile_.position()));
+  if (config_.has(0x6077)) {
+    const double rated = d.get<std::uint32_t>(0x6076, 0) / 1000.0;
+    const double permille = std::clamp(std::round(torque_ / rated * 1000), -32768.0, 32767.0);
+    d.set<std::int16_t>(0x6077, 0, static_cast<std::int16_t>(permille));
+  }
   d.set<std::uint16_t>(0x6041, 0, statusword());
 }
 
@@ -465,7 +562,8 @@ std::uint16_t Cia402ServoDrive::mode_bits() const {
       return static_cast<std::uint16_t>((set_point_ack_ ? 0x1000 : 0) |
                                         (following_error_ ? 0x2000 : 0));
     case Cia402Mode::kProfileVelocity:
-      return std::abs(actual_velocity_) <= od().get<std::uint16_t>(0x606F, 0) ? 0x1000 : 0;
+      return std::abs(actual_velocity_) <= velocity_in(od().get<std::uint16_t>(0x606F, 0)) ? 0x1000
+                                                                                           : 0;
     case Cia402Mode::kCyclicSyncPosition:
       return static_cast<std::uint16_t>((enabled ? 0x1000 : 0) | (following_error_ ? 0x2000 : 0));
     case Cia402Mode::kCyclicSyncVelocity:

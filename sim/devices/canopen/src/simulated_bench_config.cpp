@@ -71,13 +71,86 @@ void read_double(const YAML::Node& parent, const std::string& section, const cha
   out = v;
 }
 
+// [numerator, denominator] of a factor group object. 0 and values >= 2^31 are taken: they
+// model a drive whose factor group a master must refuse.
+void read_fraction(const YAML::Node& parent, const std::string& section, const char* key,
+                   std::uint32_t& numerator, std::uint32_t& denominator) {
+  const YAML::Node n = parent[key];
+  if (!n) return;
+  const std::string name = section + "." + key;
+  const std::string expected = "[numerator, denominator], two integers in 0..4294967295";
+  if (!n.IsSequence() || n.size() != 2) bad(name, n, expected);
+  long long v[2] = {0, 0};
+  for (std::size_t i = 0; i < 2; ++i) {
+    try {
+      v[i] = n[i].as<long long>();
+    } catch (const YAML::Exception&) {
+      bad(name, n, expected);
+    }
+    if (v[i] < 0 || v[i] > 0xFFFFFFFFLL) bad(name, n, expected);
+  }
+  numerator = static_cast<std::uint32_t>(v[0]);
+  denominator = static_cast<std::uint32_t>(v[1]);
+}
+
+void read_factor_group(const YAML::Node& n, DriveFactorGroupConfig& f) {
+  const std::string s = "simbench.drive.factor_group";
+  check_keys(n, s,
+             {"position_encoder_resolution", "velocity_encoder_resolution", "gear_ratio",
+              "feed_constant"});
+  read_fraction(n, s, "position_encoder_resolution", f.position_encoder_increments,
+                f.position_encoder_revolutions);
+  read_fraction(n, s, "velocity_encoder_resolution", f.velocity_encoder_increments,
+                f.velocity_encoder_revolutions);
+  read_fraction(n, s, "gear_ratio", f.gear_motor_revolutions, f.gear_shaft_revolutions);
+  read_fraction(n, s, "feed_constant", f.feed, f.feed_shaft_revolutions);
+}
+
+void read_drive_units(const YAML::Node& n, ServoDriveConfig& d) {
+  const std::string s = "simbench.drive";
+  if (const YAML::Node u = n["velocity_unit"]) {
+    const std::string v = u.IsScalar() ? u.Scalar() : "";
+    if (v == "counts/s") {
+      d.velocity_unit = DriveVelocityUnit::kCounts;
+    } else if (v == "rpm") {
+      d.velocity_unit = DriveVelocityUnit::kRpm;
+    } else if (v == "0.1 rpm") {
+      d.velocity_unit = DriveVelocityUnit::kDeciRpm;
+    } else if (v == "factor_group") {
+      d.velocity_unit = DriveVelocityUnit::kFactorGroup;
+    } else {
+      bad(s + ".velocity_unit", u, "counts/s, rpm, 0.1 rpm or factor_group");
+    }
+  }
+  if (const YAML::Node f = n["factor_group"]) read_factor_group(f, d.factor_group);
+  if (const YAML::Node a = n["absent_objects"]) {
+    const std::string expected = "a list of the optional objects \"0x60F4\", \"0x6077\"";
+    if (!a.IsSequence()) bad(s + ".absent_objects", a, expected);
+    d.absent_objects.clear();
+    for (const auto& item : a) {
+      const std::string text = item.IsScalar() ? item.Scalar() : "";
+      std::uint16_t index = 0;
+      if (text == "0x60F4" || text == "0x60f4") {
+        index = 0x60F4;
+      } else if (text == "0x6077") {
+        index = 0x6077;
+      } else {
+        bad(s + ".absent_objects", item, expected);
+      }
+      d.absent_objects.push_back(index);
+    }
+  }
+}
+
 void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
   const std::string s = "simbench.drive";
   check_keys(n, s,
              {"node_id", "counts_per_revolution", "rated_torque_nm", "max_torque_permille",
               "max_motor_speed_rpm", "position_gain", "velocity_gain", "velocity_integral_time_s",
               "control_period_us", "quick_stop_option", "following_error_window",
-              "following_error_timeout_ms", "serial_number"});
+              "following_error_timeout_ms", "serial_number", "velocity_unit", "factor_group",
+              "absent_objects"});
+  read_drive_units(n, d);
   read_integer(n, s, "node_id", d.node_id, 1, 127);
   read_integer(n, s, "counts_per_revolution", d.counts_per_revolution, 4, 1LL << 30);
   read_double(n, s, "rated_torque_nm", d.rated_torque_nm, 1e-3, 1e4);

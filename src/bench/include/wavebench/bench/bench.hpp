@@ -142,6 +142,10 @@ class Bench {
   virtual void add_observer(SampleObserver& observer) = 0;
   virtual void remove_observer(SampleObserver& observer) = 0;
   virtual AcquisitionStats acquisition_stats() const = 0;
+  // Channels the connected bench goes without because a device lacks an optional object
+  // (e.g. "drive.following_error" when the drive answers 0x60F4 with SDO abort 06020000); the
+  // connect log gives the reasons. (Added; the default has none.)
+  virtual std::vector<std::string> absent_channels() const { return {}; }
 
   // Operator stop, from any thread: trips the bench with `reason` (see Safety above).
   virtual void request_stop(const std::string& reason) noexcept = 0;

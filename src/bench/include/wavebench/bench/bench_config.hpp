@@ -14,6 +14,7 @@
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/bench/channel_device.hpp"
 #include "wavebench/canopen/eds.hpp"
+#include "wavebench/bench/drive_unit_choice.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
@@ -57,6 +58,13 @@ struct DriveSettings {
   double profile_acceleration_rad_s2 = 0;        // 0: the drive's own 0x6083/0x6084
   double target_settle_s = 0.0;                  // extra wait after target reached
   NodeExpectations expect;
+  // The drive's units (drive_unit_choice.hpp); counts of the motor encoder by default.
+  DriveUnitChoice position_unit{DriveUnitChoice::Kind::kCounts, 0, "counts"};
+  DriveUnitChoice velocity_unit{DriveUnitChoice::Kind::kCounts, 0, "counts/s"};
+  DriveUnitChoice acceleration_unit{DriveUnitChoice::Kind::kCounts, 0, "counts/s²"};
+  // N·m per unit of torque actual 0x6077; unset: per mille of the rated torque 0x6076 (mN·m),
+  // read at connect.
+  std::optional<double> torque_actual_nm_per_unit;
 };
 
 struct EncoderSettings {

@@ -33,6 +33,7 @@
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/channel_device.hpp"
 #include "wavebench/bench/quick_stop_watch.hpp"
+#include "wavebench/bench/drive_channels.hpp"
 #include "wavebench/bench/safety_limits_check.hpp"
 #include "wavebench/bench/sample_assembler.hpp"
 #include "wavebench/bench/sync_lateness_histogram.hpp"
@@ -87,6 +88,11 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::optional<modbus::BrakeReadback> brake_readback() const { return fresh_brake_readback(); }
   // Drive values of the last cycle (statusword, following error).
   const DriveCycleValues& latest_drive() const noexcept { return latest_drive_; }
+  // The drive's units and optional objects as found at the last connect.
+  const DriveChannels& drive_channels() const noexcept { return drive_channels_; }
+  std::vector<std::string> absent_channels() const override {
+    return drive_channels_.absent_names();
+  }
 
  private:
   void on_brake_event(const modbus::BrakeEvent& event) noexcept override;
@@ -138,7 +144,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   BenchConfig config_;
   can::CanBus& bus_;
   boost::asio::io_context& io_;
-  InputShaftScaling scaling_;
+  DriveChannels drive_channels_;
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 
   std::unique_ptr<canopen::Master> master_;

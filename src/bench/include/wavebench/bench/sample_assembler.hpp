@@ -1,8 +1,9 @@
 #pragma once
 // Assembles one SyncSample per SYNC cycle from the TPDOs that follow the SYNC (bench.md §1):
-// drive TPDO1 (statusword, position), drive TPDO2 (velocity, following error), encoder TPDO1
-// (0x6004), torque sensor TPDO1 (its mapped value), and the brake's latest readback when it is
-// fresh. A channel that did not arrive keeps its flag clear and is never filled in.
+// drive TPDO1 (statusword, position), drive TPDO2 (velocity, and following error where the drive
+// has 0x60F4), encoder TPDO1 (0x6004), torque sensor TPDO1 (its mapped value), and the brake's
+// latest readback when it is fresh. A channel that did not arrive keeps its flag clear and is
+// never filled in. Drive values are converted by DriveUnits.
 
 #include <cstdint>
 #include <optional>
@@ -29,11 +30,12 @@ class SampleAssembler {
   enum Frame : unsigned { kDrivePosition = 1, kDriveVelocity = 2, kEncoder = 4, kTorque = 8 };
   static constexpr unsigned kAllFrames = 15;
 
-  SampleAssembler(InputShaftScaling scaling, canopen::Cia406Encoder& encoder,
-                  const canopen::TorqueSensor& torque);
+  // `following_error`: TPDO2 carries 0x60F4 after 0x606C (drive_velocity_pdo).
+  SampleAssembler(DriveUnits units, canopen::Cia406Encoder& encoder,
+                  const canopen::TorqueSensor& torque, bool following_error = true);
 
   static canopen::PdoConfig drive_position_pdo(std::uint8_t node);
-  static canopen::PdoConfig drive_velocity_pdo(std::uint8_t node);
+  static canopen::PdoConfig drive_velocity_pdo(std::uint8_t node, bool following_error = true);
   static canopen::PdoConfig encoder_pdo(std::uint8_t node);
   canopen::PdoConfig torque_pdo(std::uint8_t node) const;
 
@@ -64,7 +66,7 @@ class SampleAssembler {
  private:
   bool take(unsigned bit);
 
-  InputShaftScaling scaling_;
+  DriveUnits units_;
   canopen::Cia406Encoder& encoder_;
   const canopen::TorqueSensor& torque_;
   canopen::PdoLayout drive_position_layout_;

@@ -3,11 +3,13 @@
 // PP (new-set-point handshake, change immediately, relative, halt, target reached), PV, CSP
 // and CSV, a cascaded position (P) -> velocity (PI) -> torque loop with speed and torque
 // limits, following-error supervision, software position limits, and fault injection with
-// EMCY, and the abort connection option (0x6007) on entering NMT stopped. Positions are motor
-// encoder increments, velocities increments/s, accelerations increments/s^2, torque per mille
-// of the rated torque (0x6076).
+// EMCY, and the abort connection option (0x6007) on entering NMT stopped. Inside, positions
+// are motor encoder increments, velocities increments/s, accelerations increments/s^2; on the
+// bus they are in the drive's units (ServoDriveConfig::velocity_unit). Torque is per mille of
+// the rated torque (0x6076).
 
 #include <cstdint>
+#include <vector>
 
 #include "wavebench/simdevices/bench_plant.hpp"
 #include "wavebench/simdevices/canopen_node.hpp"
@@ -15,6 +17,35 @@
 #include "wavebench/simdevices/motion_profile.hpp"
 
 namespace wavebench::simdevices {
+
+// The units of the drive's position, velocity and acceleration objects (issue #9).
+enum class DriveVelocityUnit {
+  kCounts,       // increments, increments/s, increments/s^2
+  kRpm,          // increments, rpm, rpm/s
+  kDeciRpm,      // increments, 0.1 rpm, 0.1 rpm/s
+  kFactorGroup,  // user units of the factor group 0x608F..0x6092: feed constant per driving
+                 // shaft revolution, a driving shaft revolution being gear ratio motor revs;
+                 // velocity in them per s, acceleration per s^2 (no 0x60A8/0x60A9 objects)
+};
+
+// Numerator / denominator of the factor group objects (sub-indices 1 and 2).
+struct DriveFactorGroupConfig {
+  std::uint32_t position_encoder_increments = 131072;  // 0x608F
+  std::uint32_t position_encoder_revolutions = 1;
+  std::uint32_t velocity_encoder_increments = 131072;  // 0x6090 (per s)
+  std::uint32_t velocity_encoder_revolutions = 1;      // (per s)
+  std::uint32_t gear_motor_revolutions = 1;            // 0x6091
+  std::uint32_t gear_shaft_revolutions = 1;
+  std::uint32_t feed = 131072;  // 0x6092
+  std::uint32_t feed_shaft_revolutions = 1;
+};
+
+// Object units per internal unit: what the bus sees of an increment, increment/s, increment/s^2.
+struct DriveObjectUnits {
+  double position = 1;
+  double velocity = 1;
+  double acceleration = 1;
+};
 
 struct ServoDriveConfig {
   std::uint8_t node_id = 1;
@@ -45,6 +76,14 @@ struct ServoDriveConfig {
   std::uint16_t velocity_window_time_ms = 5;      // 0x606E
   std::uint16_t velocity_threshold = 100;         // 0x606F [inc/s] "speed = 0"
   bool following_error_is_fault = true;           // error 0x8611 when the window is exceeded
+  DriveVelocityUnit velocity_unit = DriveVelocityUnit::kCounts;
+  DriveFactorGroupConfig factor_group;  // with kFactorGroup
+  // Optional objects this drive model lacks (0x60F4, 0x6077): SDO access and PDO mapping
+  // answer 06020000.
+  std::vector<std::uint16_t> absent_objects;
+
+  bool has(std::uint16_t index) const;
+  DriveObjectUnits object_units() const;
 };
 
 // Operation modes (0x6060) the drive accepts.
@@ -92,8 +131,15 @@ class Cia402ServoDrive final : public CanopenNode {
   double motion_demand(double dt, double& velocity_ff);
   double clamp_to_software_limits(double position);
   std::uint16_t mode_bits() const;
+  // Bus objects in the drive's units to and from increments (per s, per s^2).
+  double position_in(double object_value) const { return object_value / units_.position; }
+  double velocity_in(double object_value) const { return object_value / units_.velocity; }
+  double acceleration_in(double object_value) const { return object_value / units_.acceleration; }
+  std::int32_t position_out(double increments) const;
+  std::int32_t velocity_out(double increments_per_s) const;
 
   ServoDriveConfig config_;
+  DriveObjectUnits units_;
   Cia402StateMachine machine_;
   MotionProfile profile_;
   Cia402Mode active_mode_ = Cia402Mode::kNone;

@@ -9,12 +9,27 @@
 //               max_torque_permille: 3000, max_motor_speed_rpm: 3000, position_gain: 120,
 //               velocity_gain: 0.08, velocity_integral_time_s: 0.01, control_period_us: 250,
 //               quick_stop_option: 6, following_error_window: 65536,
-//               following_error_timeout_ms: 50, serial_number: 4097}
+//               following_error_timeout_ms: 50, serial_number: 4097,
+//               velocity_unit: counts/s,        # counts/s | rpm | "0.1 rpm" | factor_group
+//               factor_group: {position_encoder_resolution: [131072, 1],   # 0x608F
+//                              velocity_encoder_resolution: [131072, 1],   # 0x6090
+//                              gear_ratio: [1, 1],                         # 0x6091
+//                              feed_constant: [131072, 1]},                # 0x6092
+//               absent_objects: []}             # optional objects lacking: "0x60F4", "0x6077"
 //     encoder: {node_id: 3, resolution: 1048576, revolutions: 2048, noise_arcsec: 0.5, seed: 3}
 //     torque_sensor: {node_id: 4, object: "0x6130:1", type: i32, scale: 0.001,
 //                     noise_nm: 0.02, offset_nm: 0, seed: 4}
 //     input_encoder: {node_id: 5, resolution: 1048576, revolutions: 1, noise_arcsec: 0.5,
 //                     seed: 5}   # absent: no input-side encoder (seed 004's bench has one)
+//
+// Drive units (issue #9): with `velocity_unit` rpm or 0.1 rpm the drive's velocity objects
+// (0x606C, 0x60FF, 0x6081, 0x607F, 0x606D, 0x606F) are in that unit and its accelerations
+// (0x6083..0x6085) in that unit per second, positions staying in increments; with factor_group
+// positions are in feed-constant units (0x6092 feed per driving shaft revolution, 0x6091 motor
+// revolutions per driving shaft revolution), velocities in them per s, accelerations per s^2,
+// and the drive has no 0x60A8/0x60A9. A zero, or a value >= 2^31, in `factor_group` models a
+// drive whose factor group a master must refuse. `absent_objects` lists optional objects the
+// model lacks: SDO access and PDO mapping of them answer 06020000.
 //
 // The gear's "true" parameters are not here: the CLI takes them from a twin-case file.
 
