@@ -3,7 +3,8 @@
 // sample going to a sample log through runs::SampleLogObserver as in a run. Two runs in one
 // process, each on a fresh bench: plain, then with a 50 ms stall injected once a second into the
 // log file's write(2)/fdatasync(2) (disk_stall.hpp). Prints samples acquired, logged, dropped
-// and lost, SYNC lateness p50/p99/max of both runs and p99(stalled)/p99(plain).
+// and lost, SYNC lateness p50/p99/max of both runs and p99(stalled)/p99(plain); then, for
+// reference, a third stalled run with the log written on the bench thread (before issue #9).
 // Acceptance: 0 samples lost, ratio <= 1.5.
 // Usage: acquisition_stall_benchmark [SECONDS=20] [CONFIG=sim] [--smoke]
 //   --smoke: exit 1 unless no sample was lost (counts only; for ctest, no timing verdict).
@@ -17,6 +18,7 @@
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "disk_stall.hpp"
 #include "wavebench/bench/bench_config.hpp"
@@ -27,6 +29,24 @@
 namespace {
 
 using namespace wavebench;
+
+// The design before issue #9, for reference: the log written on the bench thread.
+class SynchronousLogObserver : public bench::SampleObserver {
+ public:
+  explicit SynchronousLogObserver(storage::SampleLogWriter& writer) : writer_(writer) {}
+  void on_sample(const storage::SyncSample& s) noexcept override {
+    try {
+      writer_.append(s);
+      writer_.flush_if_due();
+    } catch (...) {
+      ++failures;
+    }
+  }
+  std::uint64_t failures = 0;
+
+ private:
+  storage::SampleLogWriter& writer_;
+};
 
 class CountingObserver : public bench::SampleObserver {
  public:
@@ -47,7 +67,10 @@ struct RunFigures {
   }
 };
 
-RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall) {
+enum class LogPath { writer_thread, bench_thread };
+
+RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall,
+                    LogPath log_path = LogPath::writer_thread) {
   const auto path = std::filesystem::temp_directory_path() /
                     ("wavebench-acq-stall-" + std::to_string(::getpid()) + ".wbs");
   auto b = bench::make_bench(config);
@@ -57,24 +80,41 @@ RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall
   RunFigures f;
   {
     storage::SampleLogWriter writer(path);
-    runs::SampleLogObserver log(writer, *b);
+    // One of the two: the writer belongs to one thread.
+    std::optional<runs::SampleLogObserver> log;
+    std::optional<SynchronousLogObserver> synchronous;
+    if (log_path == LogPath::writer_thread) {
+      log.emplace(writer, *b);
+    } else {
+      synchronous.emplace(writer);
+    }
+    bench::SampleObserver& observer =
+        log ? static_cast<bench::SampleObserver&>(*log) : *synchronous;
     CountingObserver count;
     std::optional<benchmarks::DiskStall> stalls;
     const std::uint64_t stalls0 = benchmarks::DiskStall::stalls_injected();
     if (stall) stalls.emplace(path, std::chrono::milliseconds(50), std::chrono::seconds(1));
     b->add_observer(count);
-    b->add_observer(log);
-    b->wait_for(seconds);
-    b->remove_observer(log);
+    b->add_observer(observer);
+    try {
+      b->wait_for(seconds);
+    } catch (const bench::BenchAborted& e) {
+      f.failure = std::string("bench tripped: ") + e.what();
+    }
+    b->remove_observer(observer);
     b->remove_observer(count);
-    log.finish();  // drains the queue into the file, as the run executor does
+    if (log) log->finish();  // drains the queue into the file, as the run executor does
     if (stalls) stalls->disarm();
     writer.close();
     f.stalls = benchmarks::DiskStall::stalls_injected() - stalls0;
     f.acquired = count.samples;
-    f.dropped = log.samples_dropped();
-    f.not_written = log.samples_not_logged();
-    if (log.failed()) f.failure = log.failure();
+    if (log) {
+      f.dropped = log->samples_dropped();
+      f.not_written = log->samples_not_logged();
+      if (log->failed()) f.failure = log->failure();  // the trip's reason, when it tripped
+    } else {
+      f.not_written = synchronous->failures;
+    }
   }
   const auto s = b->acquisition_stats();
   f.p50_s = s.sync_lateness_p50_s;
@@ -116,6 +156,9 @@ int main(int argc, char** argv) {
 
   const RunFigures plain = run_once(config, seconds, false);
   const RunFigures stalled = run_once(config, seconds, true);
+  const std::optional<RunFigures> before =
+      smoke ? std::nullopt
+            : std::optional<RunFigures>(run_once(config, seconds, true, LogPath::bench_thread));
   const double ratio = plain.p99_s > 0 ? stalled.p99_s / plain.p99_s : 0;
   const bool no_loss = plain.lost() == 0 && stalled.lost() == 0 && plain.failure.empty() &&
                        stalled.failure.empty() && stalled.stalls > 0;
@@ -127,6 +170,12 @@ int main(int argc, char** argv) {
   print("stalled", stalled);
   std::printf("  p99(stalled)/p99(plain) = %.2f (acceptance <= 1.5); samples lost: %s\n", ratio,
               no_loss ? "none" : "SOME");
+  if (before) {
+    std::printf("  for reference, the log written on the bench thread as before issue #9:\n");
+    print("stalled", *before);
+    std::printf("  p99(stalled, bench thread)/p99(plain) = %.2f\n",
+                plain.p99_s > 0 ? before->p99_s / plain.p99_s : 0);
+  }
   if (smoke) return no_loss ? 0 : 1;
   return 0;
 }

@@ -35,7 +35,7 @@ bool LiveSampleBuffer::read_slot(std::uint64_t seq, storage::SyncSample& out) co
   for (std::size_t i = 0; i < kWords; ++i) words[i] = slot.words[i].load(std::memory_order_relaxed);
   std::atomic_thread_fence(std::memory_order_acquire);  // the words before the second look
   if (slot.stamp.load(std::memory_order_relaxed) != before) return false;
-  std::memcpy(&out, words.data(), sizeof out);
+  std::memcpy(static_cast<void*>(&out), words.data(), sizeof out);  // trivially copyable
   return true;
 }
 

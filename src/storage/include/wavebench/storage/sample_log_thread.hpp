@@ -21,8 +21,9 @@
 namespace wavebench::storage {
 
 struct SampleLogThreadOptions {
-  // 65 s at 1 kHz (6.5 MB): far beyond any disk stall a run should ride through.
-  std::size_t queue_capacity = std::size_t{1} << 16;
+  // 131 s at 1 kHz (10 MB): beyond any disk stall a run should ride through, and room for the
+  // simulated clock outrunning the disk.
+  std::size_t queue_capacity = std::size_t{1} << 17;
   // The writer thread looks at the queue this often when it is empty: polling means the
   // bench thread makes no system call to wake it.
   std::chrono::milliseconds poll_interval{2};
