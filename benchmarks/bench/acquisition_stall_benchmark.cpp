@@ -60,6 +60,7 @@ struct RunFigures {
   std::uint64_t dropped = 0;   // log queue full
   std::uint64_t not_written = 0;
   std::uint64_t stalls = 0;
+  std::uint64_t syncs_sent = 0, sync_skipped = 0;  // while the log was attached
   double p50_s = 0, p99_s = 0, max_s = 0;
   std::string failure;
   std::int64_t lost() const {
@@ -94,6 +95,7 @@ RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall
     std::optional<benchmarks::DiskStall> stalls;
     const std::uint64_t stalls0 = benchmarks::DiskStall::stalls_injected();
     if (stall) stalls.emplace(path, std::chrono::milliseconds(50), std::chrono::seconds(1));
+    const auto s0 = b->acquisition_stats();
     b->add_observer(count);
     b->add_observer(observer);
     try {
@@ -103,6 +105,9 @@ RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall
     }
     b->remove_observer(observer);
     b->remove_observer(count);
+    const auto s1 = b->acquisition_stats();
+    f.syncs_sent = s1.syncs_sent - s0.syncs_sent;
+    f.sync_skipped = s1.sync_skipped - s0.sync_skipped;
     if (log) log->finish();  // drains the queue into the file, as the run executor does
     if (stalls) stalls->disarm();
     writer.close();
@@ -130,11 +135,14 @@ RunFigures run_once(const bench::BenchConfig& config, double seconds, bool stall
 void print(const char* name, const RunFigures& f) {
   std::printf(
       "  %-8s acquired %llu, logged %llu, dropped %llu, not written %llu, lost %lld; "
-      "stalls injected %llu; SYNC lateness p50 %.1f us, p99 %.1f us, max %.1f us%s%s\n",
+      "stalls injected %llu; SYNCs sent %llu, periods skipped %llu; SYNC lateness p50 %.1f us, "
+      "p99 %.1f us, max %.1f us%s%s\n",
       name, static_cast<unsigned long long>(f.acquired), static_cast<unsigned long long>(f.logged),
       static_cast<unsigned long long>(f.dropped), static_cast<unsigned long long>(f.not_written),
-      static_cast<long long>(f.lost()), static_cast<unsigned long long>(f.stalls), f.p50_s * 1e6,
-      f.p99_s * 1e6, f.max_s * 1e6, f.failure.empty() ? "" : "; log failed: ", f.failure.c_str());
+      static_cast<long long>(f.lost()), static_cast<unsigned long long>(f.stalls),
+      static_cast<unsigned long long>(f.syncs_sent),
+      static_cast<unsigned long long>(f.sync_skipped), f.p50_s * 1e6, f.p99_s * 1e6, f.max_s * 1e6,
+      f.failure.empty() ? "" : "; log failed: ", f.failure.c_str());
 }
 
 }  // namespace
