@@ -5,7 +5,9 @@
 // log file's write(2)/fdatasync(2) (disk_stall.hpp). Prints samples acquired, logged, dropped
 // and lost, SYNC lateness p50/p99/max of both runs and p99(stalled)/p99(plain); then, for
 // reference, a third stalled run with the log written on the bench thread (before issue #9).
-// Acceptance: 0 samples lost, ratio <= 1.5.
+// Acceptance: 0 samples lost, ratio <= 1.5. Lateness percentiles run from connect(); 50 ms a
+// second touches about 0.1 % of the SYNCs, so p99 hardly moves even on the bench thread: the
+// periods skipped (counted while the log is attached) and the max are the figures that show it.
 // Usage: acquisition_stall_benchmark [SECONDS=20] [CONFIG=sim] [--smoke]
 //   --smoke: exit 1 unless no sample was lost (counts only; for ctest, no timing verdict).
 #include <unistd.h>

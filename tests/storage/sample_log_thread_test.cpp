@@ -77,6 +77,23 @@ TEST(SampleLogThread, AFullQueueDropsAndCountsInsteadOfWaiting) {
   fs::remove_all(path.parent_path());
 }
 
+TEST(SampleLogThread, InLockstepTheProducerWaitsForTheWriterInsteadOfDropping) {
+  const auto path = testing::fresh_test_dir() / "samples.wbs";
+  SampleLogWriter writer(path);
+  RecordedFailures failures;
+  SampleLogThreadOptions options;
+  options.queue_capacity = 64;
+  options.lockstep_backlog = 4;  // simulated clock
+  SampleLogThread thread(writer, failures.sink(), options);
+  constexpr std::uint64_t kSamples = 20000;
+  for (std::uint64_t i = 0; i < kSamples; ++i) ASSERT_TRUE(thread.try_push(make_sample(i)));
+  thread.finish();
+  writer.close();
+  EXPECT_EQ(thread.samples_dropped(), 0u);
+  EXPECT_EQ(read_sample_log(path).samples.size(), kSamples);
+  fs::remove_all(path.parent_path());
+}
+
 TEST(SampleLogThread, AFailedWriteIsReportedOnceFromTheWriterThreadAndTheRestCounted) {
   const auto path = testing::fresh_test_dir() / "samples.wbs";
   SampleLogWriterOptions o;

@@ -22,12 +22,27 @@ std::string describe_write_error(int error) {
   }
 }
 
+namespace {
+
+// On the simulated clock the bench must not outrun its log (lockstep_backlog says why).
+storage::SampleLogThreadOptions for_clock(storage::SampleLogThreadOptions options,
+                                          const bench::Bench& bench) {
+  if (bench.description().simulated_clock) {
+    options.lockstep_backlog = 32;
+    options.poll_interval = std::chrono::microseconds(250);
+  }
+  return options;
+}
+
+}  // namespace
+
 SampleLogObserver::SampleLogObserver(storage::SampleLogWriter& writer, bench::Bench& bench,
                                      storage::SampleLogThreadOptions options)
     : writer_(writer),
       bench_(bench),
       thread_(
-          writer, [this](int error, const std::string& what) { fail(error, what); }, options) {}
+          writer, [this](int error, const std::string& what) { fail(error, what); },
+          for_clock(options, bench)) {}
 
 void SampleLogObserver::on_sample(const storage::SyncSample& sample) noexcept {
   thread_.try_push(sample);  // a full queue is counted by the thread

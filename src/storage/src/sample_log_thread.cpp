@@ -25,6 +25,12 @@ SampleLogThread::~SampleLogThread() {
 
 bool SampleLogThread::try_push(const SyncSample& sample) noexcept {
   pushed_.fetch_add(1, std::memory_order_relaxed);
+  if (options_.lockstep_backlog > 0) {
+    // The writer thread drains whatever it finds, failed or not: this wait always ends.
+    while (options_.queue_capacity - queue_.write_available() > options_.lockstep_backlog) {
+      std::this_thread::yield();
+    }
+  }
   if (queue_.push(sample)) return true;
   dropped_.fetch_add(1, std::memory_order_relaxed);
   return false;

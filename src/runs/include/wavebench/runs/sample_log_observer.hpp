@@ -2,7 +2,9 @@
 // Every sample to samples.wbs as it is acquired. On the bench thread the observer only copies
 // the sample into the log thread's bounded queue (storage::SampleLogThread); the disk is
 // written and synced on that thread, so a slow disk never holds the SYNC cycle (issue #9). A
-// full queue drops the sample and counts it (samples_dropped(), in the run's results).
+// full queue drops the sample and counts it (samples_dropped(), in the run's results). On the
+// simulated clock the bench waits for the log thread instead (lockstep_backlog): that costs no
+// bench time, and the bench cannot run ahead of its log.
 //
 // The first write that fails (disk full, read-only, I/O error, file too large) trips the bench
 // from the log thread: a run whose samples are not being recorded must not go on moving it

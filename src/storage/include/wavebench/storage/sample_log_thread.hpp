@@ -26,7 +26,12 @@ struct SampleLogThreadOptions {
   std::size_t queue_capacity = std::size_t{1} << 17;
   // The writer thread looks at the queue this often when it is empty: polling means the
   // bench thread makes no system call to wake it.
-  std::chrono::milliseconds poll_interval{2};
+  std::chrono::microseconds poll_interval{2000};
+  // Simulated clock only (0 on the real clock): try_push() waits while more than this many
+  // samples are queued instead of letting the bench outrun its log. Waiting costs no bench
+  // time there, and a write failure then trips the bench within about as many samples as on
+  // the real clock, instead of after whatever the simulation ran ahead meanwhile.
+  std::size_t lockstep_backlog = 0;
 };
 
 class SampleLogThread {
@@ -41,7 +46,8 @@ class SampleLogThread {
   SampleLogThread(const SampleLogThread&) = delete;
   SampleLogThread& operator=(const SampleLogThread&) = delete;
 
-  // Producer side: never waits, never allocates. False when the queue is full (counted).
+  // Producer side: never waits (but see lockstep_backlog), never allocates. False when the
+  // queue is full (counted).
   bool try_push(const SyncSample& sample) noexcept;
 
   // Writes everything queued, then joins the thread. Idempotent. Push nothing after it. The
