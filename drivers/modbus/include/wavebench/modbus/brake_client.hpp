@@ -3,8 +3,9 @@
 // Owns the line's one libmodbus context (issue #9: one master per RS-485 line), shared by the
 // bench thread's commands and the BrakeSupervisor's heartbeats and polls: calls from several
 // threads take turns on the link (link_turns.hpp), one transaction at a time, and make_safe()
-// goes before every routine request that is waiting. A lost link is reopened on the next call,
-// no sooner than the backoff allows.
+// goes before every routine request that is waiting: it waits at most for the turn in progress,
+// one transaction (two for another thread's read-modify-write of the control word, which must
+// not be split). A lost link is reopened on the next call, no sooner than the backoff allows.
 
 #include <atomic>
 #include <chrono>
