@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "async_console_log.hpp"
 #include "commands.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
@@ -150,6 +151,7 @@ int run_procedure(const RunArgs& a) {
   }
   request.config_text = config.text;
 
+  const AsyncConsoleLog log;  // declared before the bench: outlives its threads
   std::unique_ptr<bench::Bench> bench;
   try {
     bench = bench::make_bench(config);
@@ -188,6 +190,11 @@ int run_procedure(const RunArgs& a) {
     std::cout << (outcome.results["pass"].get<bool>() ? ", pass" : ", FAIL");
   }
   std::cout << "\nresults: " << (outcome.dir / "results.json").string() << "\n";
+  if (const auto w = outcome.results.find("warnings"); w != outcome.results.end()) {
+    for (const auto& warning : *w)
+      std::cerr << "wavebench run: warning: "
+                << (warning.is_string() ? warning.get<std::string>() : warning.dump()) << "\n";
+  }
   if (outcome.results.contains("report")) {
     std::cout << "report:  " << outcome.results["report"].get<std::string>() << "\n";
   } else if (outcome.results.contains("report_error")) {

@@ -8,6 +8,7 @@
 #include <future>
 #include <stdexcept>
 #include <thread>
+#include <vector>
 
 #include "test_dir.hpp"
 #include "wavebench/daemon/api_token.hpp"
@@ -66,6 +67,45 @@ TEST(LiveSampleBuffer, ReturnsWhatArrivedSinceAndCountsWhatLeftTheBuffer) {
   EXPECT_TRUE(buffer.since(10, 5).samples.empty());
   EXPECT_TRUE(buffer.since(99, 5).samples.empty());
   EXPECT_EQ(buffer.total(), 10u);
+}
+
+TEST(LiveSampleBuffer, ReadersRacingTheWriterGetWholeSamplesOrCountThemMissed) {
+  LiveSampleBuffer buffer(16);  // small, so that the writer laps the readers often
+  constexpr std::uint64_t kSamples = 200000;
+  std::atomic<bool> done{false};
+  std::atomic<std::uint64_t> torn{0};
+  std::atomic<std::uint64_t> unaccounted{0};
+  std::vector<std::thread> readers;
+  for (int r = 0; r < 3; ++r) {
+    readers.emplace_back([&] {
+      std::uint64_t since = 0;
+      while (!done.load()) {
+        const auto slice = buffer.since(since, 0);
+        for (const auto& live : slice.samples) {
+          // Every field of sample seq is derived from seq: a torn copy mixes two samples.
+          const auto v = static_cast<double>(live.seq);
+          if (live.sample.theta_in_rad != v || live.sample.theta_out_rad != -v ||
+              live.sample.torque_nm != 2 * v || live.sample.sync_counter != live.seq % 1000) {
+            ++torn;
+          }
+        }
+        if (slice.samples.size() + slice.missed != slice.next_seq - since) ++unaccounted;
+        since = slice.next_seq;
+      }
+    });
+  }
+  for (std::uint64_t i = 0; i < kSamples; ++i) {
+    storage::SyncSample s = sample_at(static_cast<double>(i));
+    s.theta_out_rad = -static_cast<double>(i);
+    s.torque_nm = 2 * static_cast<double>(i);
+    s.sync_counter = static_cast<std::uint32_t>(i % 1000);
+    buffer.on_sample(s);  // never waits for a reader
+  }
+  done = true;
+  for (auto& t : readers) t.join();
+  EXPECT_EQ(torn.load(), 0u);
+  EXPECT_EQ(unaccounted.load(), 0u);
+  EXPECT_EQ(buffer.total(), kSamples);
 }
 
 TEST(ApiToken, CreatedOwnerOnlyAndReadBack) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <system_error>
 #include <vector>
 
 #include "wavebench/modbus/register_codec.hpp"
@@ -12,9 +13,10 @@ BrakeClient::BrakeClient(BrakeClientConfig config)
     : config_(std::move(config)),
       link_(config_.link),
       backoff_(config_.link.reconnect_initial_backoff, config_.link.reconnect_max_backoff),
-      last_success_(Clock::now()) {}
+      last_success_(Clock::now().time_since_epoch().count()) {}
 
 void BrakeClient::connect() {
+  const auto turn = turns_.take(TurnPriority::routine);
   try {
     link_.connect();
     backoff_.succeeded();
@@ -24,8 +26,19 @@ void BrakeClient::connect() {
   }
 }
 
+void BrakeClient::disconnect() noexcept {
+  try {
+    const auto turn = turns_.take(TurnPriority::routine);
+    link_.close();
+  } catch (const std::system_error&) {  // the turn's mutex failed: close anyway
+    link_.close();
+  }
+}
+
+// One transaction on the link, in a routine turn unless this thread already holds one.
 template <typename F>
 auto BrakeClient::with_link(F&& f) {
+  const auto turn = turns_.take(TurnPriority::routine);
   if (!link_.connected()) {
     const auto now = Clock::now();
     if (!backoff_.due(now)) {
@@ -41,15 +54,15 @@ auto BrakeClient::with_link(F&& f) {
   try {
     if constexpr (std::is_void_v<decltype(f())>) {
       f();
-      last_success_ = Clock::now();
+      mark_success();
     } else {
       auto result = f();
-      last_success_ = Clock::now();
+      mark_success();
       return result;
     }
   } catch (const ModbusError& e) {
     // An exception response proves the controller is alive and in step with us.
-    if (e.kind() == ModbusErrorKind::exception) last_success_ = Clock::now();
+    if (e.kind() == ModbusErrorKind::exception) mark_success();
     if (!link_.connected()) backoff_.failed(Clock::now());
     throw;
   }
@@ -71,6 +84,8 @@ uint16_t BrakeClient::read_control() {
 }
 
 void BrakeClient::write_control_bit(int bit, bool on) {
+  // Read and write in one turn: a safe-state write in between would be undone.
+  const auto turn = turns_.take(TurnPriority::routine);
   uint16_t word = read_control();
   const auto mask = static_cast<uint16_t>(1u << bit);
   word = on ? static_cast<uint16_t>(word | mask) : static_cast<uint16_t>(word & ~mask);
@@ -116,6 +131,7 @@ void BrakeClient::set_setpoint(double value, BrakeMode mode, double ramp_per_s) 
 }
 
 void BrakeClient::make_safe() {
+  const auto turn = turns_.take(TurnPriority::safety);
   disable();
   write_value(config_.map.setpoint_ramp, 0.0);
   write_value(config_.map.setpoint, 0.0);
@@ -126,6 +142,7 @@ void BrakeClient::set_watchdog(std::chrono::milliseconds timeout) {
 }
 
 void BrakeClient::heartbeat() {
+  const auto turn = turns_.take(TurnPriority::routine);  // the counter is the turn's too
   const uint16_t next = static_cast<uint16_t>(heartbeat_counter_ + 1);
   with_link([&] { link_.write_registers(config_.map.heartbeat.address, {next}); });
   heartbeat_counter_ = next;

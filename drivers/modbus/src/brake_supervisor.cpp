@@ -16,8 +16,14 @@ std::string to_string(BrakeEvent::Kind kind) {
   return "?";
 }
 
+BrakeSupervisor::BrakeSupervisor(BrakeClient& client, BrakeEventSink& sink)
+    : client_(client), config_(client.config()), sink_(sink) {}
+
 BrakeSupervisor::BrakeSupervisor(BrakeClientConfig config, BrakeEventSink& sink)
-    : config_(std::move(config)), sink_(sink) {}
+    : own_client_(std::make_unique<BrakeClient>(config)),
+      client_(*own_client_),
+      config_(std::move(config)),
+      sink_(sink) {}
 
 BrakeSupervisor::~BrakeSupervisor() {
   stop();
@@ -56,10 +62,13 @@ std::string BrakeSupervisor::last_error() const {
   return last_error_;
 }
 
-void BrakeSupervisor::cycle(BrakeClient& client, bool& watchdog_armed) {
+void BrakeSupervisor::cycle(bool& watchdog_armed) {
+  BrakeClient& client = client_;
+  armed_now_ = false;
   if (!watchdog_armed) {
     client.set_watchdog(config_.heartbeat.watchdog_timeout);
     watchdog_armed = true;
+    armed_now_ = true;
   }
   if (!heartbeat_suspended_) {
     client.heartbeat();
@@ -81,8 +90,9 @@ void BrakeSupervisor::cycle(BrakeClient& client, bool& watchdog_armed) {
 }
 
 void BrakeSupervisor::run() noexcept {
-  BrakeClient client(config_);
+  BrakeClient& client = client_;
   bool watchdog_armed = false;
+  uint64_t armed_on_connection = 0;
   auto next = BrakeClient::Clock::now();
   for (;;) {
     {
@@ -93,9 +103,13 @@ void BrakeSupervisor::run() noexcept {
     const auto now = BrakeClient::Clock::now();
     if (next < now) next = now;  // after a long stall, do not fire a burst of catch-up cycles
     try {
-      // A new connection may be a restarted controller: arm its watchdog again.
-      if (!client.connected()) watchdog_armed = false;
-      cycle(client, watchdog_armed);
+      // A new connection (whichever thread opened it) may be a restarted controller: arm its
+      // watchdog again.
+      if (!client.connected() || client.connections() != armed_on_connection) {
+        watchdog_armed = false;
+      }
+      cycle(watchdog_armed);
+      if (armed_now_) armed_on_connection = client.connections();
       if (link_lost_.exchange(false)) {
         sink_.on_brake_event(
             {BrakeEvent::Kind::link_restored,

@@ -66,6 +66,8 @@ void ModbusLink::connect() {
                       "modbus " + to_string(ep) + ": cannot connect: " + modbus_strerror(err));
   }
   ctx_ = ctx;
+  open_.store(true, std::memory_order_release);
+  connections_.fetch_add(1, std::memory_order_acq_rel);
   last_tid_ = 0;
   flush_before_next_ = ep.transport == Transport::rtu;
 }
@@ -75,6 +77,7 @@ void ModbusLink::close() noexcept {
     modbus_close(ctx_);
     modbus_free(ctx_);
     ctx_ = nullptr;
+    open_.store(false, std::memory_order_release);
   }
 }
 

@@ -185,8 +185,9 @@ void CanopenBench::connect_brake() {
     throw std::runtime_error("brake controller at " + where + ": " + e.what());
   }
   next_brake_heartbeat_ = 0;
+  // One master on the line: the supervisor's heartbeats and polls share brake_'s link.
   brake_supervisor_ = std::make_unique<modbus::BrakeSupervisor>(
-      config_.brake, static_cast<modbus::BrakeEventSink&>(*this));
+      *brake_, static_cast<modbus::BrakeEventSink&>(*this));
   brake_supervisor_->start();
 }
 

@@ -206,6 +206,11 @@ void BenchThread::run_job(Job& job) {
     } else {
       spdlog::warn("run {} {}: {}", outcome.run_id, finished.status, outcome.reason);
     }
+    if (const auto w = outcome.results.find("warnings"); w != outcome.results.end()) {
+      for (const auto& warning : *w)
+        spdlog::warn("run {}: {}", outcome.run_id,
+                     (warning.is_string() ? warning.get<std::string>() : warning.dump()));
+    }
   } catch (const std::invalid_argument& e) {
     spdlog::warn("run request refused: {}", e.what());
     job.settle({StartOutcome::Kind::kBadRequest, "", e.what()});

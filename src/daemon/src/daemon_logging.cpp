@@ -2,10 +2,11 @@
 
 #include <spdlog/sinks/rotating_file_sink.h>
 #include <spdlog/sinks/stdout_color_sinks.h>
-#include <spdlog/spdlog.h>
 
 #include <memory>
 #include <stdexcept>
+
+#include "wavebench/daemon/async_logging.hpp"
 
 namespace wavebench::daemon {
 
@@ -22,11 +23,8 @@ void setup_daemon_logging(const std::filesystem::path& log_dir, bool verbose) {
                              e.what() + ")");
   }
   auto console = std::make_shared<spdlog::sinks::stderr_color_sink_mt>();
-  auto logger =
-      std::make_shared<spdlog::logger>("wavebenchd", spdlog::sinks_init_list{console, file});
-  logger->set_level(verbose ? spdlog::level::debug : spdlog::level::info);
-  logger->flush_on(spdlog::level::info);
-  spdlog::set_default_logger(logger);
+  install_async_default_logger("wavebenchd", {console, file},
+                               verbose ? spdlog::level::debug : spdlog::level::info);
 }
 
 }  // namespace wavebench::daemon

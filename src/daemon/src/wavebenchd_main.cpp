@@ -15,6 +15,7 @@
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/async_logging.hpp"
 #include "wavebench/daemon/daemon.hpp"
 #include "wavebench/daemon/daemon_logging.hpp"
 #include "wavebench/daemon/daemon_options.hpp"
@@ -89,7 +90,7 @@ int run(const daemon::DaemonOptions& options) {
   daemon::install_last_resort_guard([&d](const std::string& what) {
     spdlog::critical("{}: bench to its safe state, active run marked, then abort", what);
     d->emergency_stop("daemon failure: " + what);
-    spdlog::shutdown();
+    daemon::finish_async_logging();
   });
   try {
     d->start();
@@ -160,9 +161,12 @@ int main(int argc, char** argv) {
   options.runs_dir = runs_dir;
   options.token_file = token_file;
   options.log_dir = log_dir;
+  int rc = 1;
   try {
-    return run(options);
+    rc = run(options);
   } catch (const std::exception& e) {
-    return fail(1, e.what());
+    rc = fail(1, e.what());
   }
+  daemon::finish_async_logging();  // every queued line written, whichever way run() ended
+  return rc;
 }

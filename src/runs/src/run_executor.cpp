@@ -8,9 +8,9 @@
 #include "beside_idling_bench.hpp"
 #include "parsed_request.hpp"
 #include "run_request_check_detail.hpp"
-#include "sample_log_observer.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
 #include "wavebench/runs/run_limits.hpp"
+#include "wavebench/runs/sample_log_observer.hpp"
 #include "wavebench/runs/sample_recorder.hpp"
 #include "wavebench/runs/software_version.hpp"
 #include "wavebench/storage/sample_log.hpp"
@@ -74,6 +74,7 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
   const auto& g = writer.gap_totals();
   return {{"samples_logged", writer.records_flushed()},
           {"log_write_errors", log.samples_not_logged()},
+          {"log_queue_dropped", log.samples_dropped()},
           {"log_first_error", log.failure()},
           {"missed_syncs", g.missed_cycles},
           {"incomplete_samples", g.incomplete_samples},
@@ -182,10 +183,11 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
         make_safe(bench);
         abort_with(log.failed() ? log.failure() : std::string("procedure failed: ") + e.what());
       }
-      // The log may fail after the procedure's last blocking call: the run is still missing
-      // samples.
-      if (log.failed()) abort_with(log.failure());
     }
+    // Every queued sample to the file before the run is finalised. The log may fail after the
+    // procedure's last blocking call, or while draining: the run is still missing samples.
+    log.finish();
+    if (log.failed()) abort_with(log.failure());
     // The servo is powered only while the run needs it: complete, aborted or failed, the
     // drive goes off and the brake output too. The power-down is not part of the record: its
     // samples entered the twin's calibration, which fits the whole log (dynamic runs on the
@@ -197,6 +199,10 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       abort_with(std::string("sample log: not closed cleanly: ") + e.what());
     }
     results["acquisition"] = acquisition_json(bench.acquisition_stats(), *writer, log);
+    if (log.samples_dropped() > 0) {
+      results["warnings"].push_back("sample log: " + std::to_string(log.samples_dropped()) +
+                                    " samples dropped, its queue was full (the disk fell behind)");
+    }
   }
 
   // Everything after the procedure works on disk and CPU only: beside the bench, so that its

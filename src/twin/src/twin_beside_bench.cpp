@@ -41,10 +41,12 @@ void TwinBesideBench::on_sample(const storage::SyncSample& sample) noexcept {
   newest_time_ns_.store(sample.receive_time_ns, std::memory_order_relaxed);
   TwinSampleInput input = twin_input(sample);
   input.index = sequence;
-  if (stopping_.load(std::memory_order_relaxed) || !ring_.try_push(input)) {
+  if (stopping_.load(std::memory_order_relaxed) || !ring_.push(input)) {
     dropped_.fetch_add(1, std::memory_order_relaxed);
     return;
   }
+  // Pairs with the fence in run(): either the twin sees this sample or we see it sleeping.
+  std::atomic_thread_fence(std::memory_order_seq_cst);
   if (sleeping_.load(std::memory_order_seq_cst)) wake();
 }
 
@@ -54,24 +56,26 @@ void TwinBesideBench::wake() noexcept {
 }
 
 void TwinBesideBench::run() noexcept {
-  std::vector<TwinSampleInput> batch;
-  batch.reserve(256);
+  std::vector<TwinSampleInput> batch(256);
   bool failed = false;
   for (;;) {
-    batch.clear();
-    if (ring_.pop_into(batch, 256) == 0) {
-      if (stopping_.load(std::memory_order_seq_cst) && ring_.empty()) break;
+    const std::size_t n = ring_.pop(batch.data(), batch.size());
+    if (n == 0) {
+      if (stopping_.load(std::memory_order_seq_cst) && ring_.read_available() == 0) break;
       // Sleep until the producer signals; the re-check after raising the flag closes the race
       // with a push that saw the flag still down.
       const std::uint32_t seen = signal_.load(std::memory_order_seq_cst);
       sleeping_.store(true, std::memory_order_seq_cst);
-      if (ring_.empty() && !stopping_.load(std::memory_order_seq_cst)) signal_.wait(seen);
+      std::atomic_thread_fence(std::memory_order_seq_cst);
+      if (ring_.read_available() == 0 && !stopping_.load(std::memory_order_seq_cst)) {
+        signal_.wait(seen);
+      }
       sleeping_.store(false, std::memory_order_seq_cst);
       continue;
     }
     if (failed) continue;  // keep draining so that the bench side never fills up
     try {
-      for (const auto& s : batch) twin_.push(s);
+      for (std::size_t i = 0; i < n; ++i) twin_.push(batch[i]);
       const double reached = twin_.twin_time_s();
       if (std::isfinite(reached)) {
         const double newest =

@@ -295,7 +295,11 @@ void BrakeServer::serve_tcp() noexcept {
     if (n <= 0) continue;
     if (FD_ISSET(listen_fd_, &readable)) {
       const int c = accept(listen_fd_, nullptr, nullptr);
-      if (c >= 0) clients.push_back(c);
+      if (c >= 0) {
+        clients.push_back(c);
+        ++connections_accepted_;
+        most_clients_at_once_ = std::max<uint64_t>(most_clients_at_once_, clients.size());
+      }
     }
     for (auto it = clients.begin(); it != clients.end();) {
       const int c = *it;

@@ -1,13 +1,15 @@
 #pragma once
-// Keeps the brake controller's watchdog fed and watches the link, on its own thread with its
-// own BrakeClient (its own libmodbus context). A link without a valid reply for longer than
-// link_loss_timeout raises BrakeEvent::link_lost: the safety event the daemon acts on
-// (bench.md §7). Alarm edges in the status word are reported too.
+// Keeps the brake controller's watchdog fed and watches the link, on its own thread. On a bench
+// it shares the bench's BrakeClient, so that the line has one master and one libmodbus context
+// (issue #9); its heartbeats and polls are routine turns on that link. A link without a valid reply
+// for longer than link_loss_timeout raises BrakeEvent::link_lost: the safety event the daemon acts
+// on (bench.md §7). Alarm edges in the status word are reported too.
 
 #include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <cstdint>
+#include <memory>
 #include <mutex>
 #include <optional>
 #include <string>
@@ -34,6 +36,9 @@ class BrakeEventSink {
 
 class BrakeSupervisor {
  public:
+  // Supervises through `client`, which must outlive the supervisor.
+  BrakeSupervisor(BrakeClient& client, BrakeEventSink& sink);
+  // With a BrakeClient of its own (a link of its own): for tools and tests of the supervisor.
   BrakeSupervisor(BrakeClientConfig config, BrakeEventSink& sink);
   ~BrakeSupervisor();
   BrakeSupervisor(const BrakeSupervisor&) = delete;
@@ -56,8 +61,10 @@ class BrakeSupervisor {
 
  private:
   void run() noexcept;
-  void cycle(BrakeClient& client, bool& watchdog_armed);
+  void cycle(bool& watchdog_armed);
 
+  std::unique_ptr<BrakeClient> own_client_;
+  BrakeClient& client_;
   BrakeClientConfig config_;
   BrakeEventSink& sink_;
   std::thread thread_;
@@ -73,6 +80,7 @@ class BrakeSupervisor {
   std::atomic<uint64_t> heartbeats_{0};
   std::atomic<uint64_t> cycles_{0};
   bool alarm_seen_ = false;
+  bool armed_now_ = false;  // the last cycle armed the watchdog (supervisor thread only)
 };
 
 }  // namespace wavebench::modbus

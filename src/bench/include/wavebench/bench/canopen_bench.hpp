@@ -2,7 +2,8 @@
 // The Bench over CANopen and Modbus (bench.md §1, §7): a canopen::Master on a CAN bus drives the
 // CiA 402 servo, reads the CiA 406 output encoder and the torque sensor by synchronous TPDOs,
 // and the powder brake is commanded over Modbus from the bench thread (modbus::BrakeClient)
-// while a modbus::BrakeSupervisor thread feeds its watchdog and reads it back.
+// while a modbus::BrakeSupervisor thread feeds its watchdog and reads it back over the same
+// link (one libmodbus context; the safe-state write goes before the supervisor's polls).
 //
 // Real clock: canopen::SyncProducer on absolute deadlines; a cycle closes when all its PDOs
 // arrived or at the next SYNC. Simulated clock: the next SYNC goes out as soon as the cycle's

@@ -1,5 +1,6 @@
 #pragma once
-// wavebenchd's log: the console and a rotating file (wavebenchd.log, 5 MiB x 5) in log_dir.
+// wavebenchd's log: the console and a rotating file (wavebenchd.log, 5 MiB x 5) in log_dir,
+// asynchronous (async_logging.hpp: finish_async_logging() at exit).
 
 #include <filesystem>
 

@@ -26,6 +26,7 @@
 // when the twin's gear cannot be simulated or its ratio is not the bench's.
 
 #include <atomic>
+#include <boost/lockfree/spsc_queue.hpp>
 #include <cstdint>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -35,7 +36,6 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/twin/measured_drive_twin.hpp"
-#include "wavebench/twin/sample_ring.hpp"
 
 namespace wavebench::twin {
 
@@ -90,7 +90,7 @@ class TwinBesideBench final : public bench::SampleObserver {
   void wake() noexcept;
 
   MeasuredDriveTwin twin_;
-  SampleRing<TwinSampleInput> ring_;
+  boost::lockfree::spsc_queue<TwinSampleInput> ring_;  // bench thread -> twin thread
   std::atomic<std::uint64_t> received_{0};
   std::atomic<std::uint64_t> dropped_{0};
   std::atomic<std::int64_t> newest_time_ns_{0};

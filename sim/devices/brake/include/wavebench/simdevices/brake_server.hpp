@@ -66,6 +66,9 @@ class BrakeServer {
   }
 
   uint64_t requests() const noexcept { return requests_; }
+  // TCP: connections accepted so far, and the most open at the same time (one per master).
+  uint64_t connections_accepted() const noexcept { return connections_accepted_; }
+  uint64_t most_clients_at_once() const noexcept { return most_clients_at_once_; }
   uint64_t faults_committed() const noexcept { return faults_committed_; }
 
  private:
@@ -100,6 +103,8 @@ class BrakeServer {
   std::condition_variable stop_cv_;
   std::atomic<bool> stopping_{false};
   std::atomic<uint64_t> requests_{0};
+  std::atomic<uint64_t> connections_accepted_{0};
+  std::atomic<uint64_t> most_clients_at_once_{0};
   std::atomic<uint64_t> faults_committed_{0};
 };
 
