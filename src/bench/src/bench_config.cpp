@@ -343,7 +343,8 @@ void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::
     std::ostringstream out;
     out << wrapper;
     try {
-      s.devices = simdevices::parse_simulated_bench_config(out.str(), s.devices);
+      s.devices = std::make_shared<const simdevices::SimulatedBenchConfig>(
+          simdevices::parse_simulated_bench_config(out.str()));
     } catch (const std::invalid_argument& e) {
       throw ConfigError("simulated.simbench", scalar_text(v), e.what());
     }

@@ -6,13 +6,17 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <memory>
 #include <optional>
 #include <string>
 
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
-#include "wavebench/simdevices/simulated_bench.hpp"
+
+namespace wavebench::simdevices {
+struct SimulatedBenchConfig;
+}
 
 namespace wavebench::bench {
 
@@ -59,7 +63,10 @@ struct TrueGearVariation {
 struct SimulatedSettings {
   std::filesystem::path true_gear_case;  // a twin case; its gear, varied, is the unit's truth
   TrueGearVariation variation;
-  simdevices::SimulatedBenchConfig devices;  // node ids, noise, ...; clock set by the bench
+  // The `simbench:` section as the simulator reads it (node ids, noise, ...; clock set by the
+  // bench factory), null without one: the simulator's defaults. Behind a pointer so that the
+  // production bench's headers do not include the simulator.
+  std::shared_ptr<const simdevices::SimulatedBenchConfig> devices;
 };
 
 struct BenchConfig {

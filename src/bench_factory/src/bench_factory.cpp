@@ -122,7 +122,8 @@ class SocketCanBench final : public ForwardingBench {
 }  // namespace
 
 simdevices::SimulatedBenchConfig simulated_devices_from(const BenchConfig& config) {
-  auto devices = config.simulated->devices;
+  auto devices = config.simulated && config.simulated->devices ? *config.simulated->devices
+                                                               : simdevices::SimulatedBenchConfig{};
   devices.gear = true_gear_from(config);
   devices.clock = config.description.simulated_clock ? simdevices::BenchClock::kSyncDriven
                                                      : simdevices::BenchClock::kRealTime;
