@@ -33,7 +33,7 @@ TEST(VcanBench, DaemonPathAgainstDevicesOnTheirOwnSocket) {
   boost::asio::io_context device_io;
   auto work = boost::asio::make_work_guard(device_io);
   can::SocketCanBus device_bus(device_io, ::wavebench::testing::kVcan);
-  auto devices_config = config.simulated->devices;
+  auto devices_config = simulated_devices_from(config);
   devices_config.gear = true_gear;
   devices_config.clock = simdevices::BenchClock::kSyncDriven;
   simdevices::SimulatedBench devices(devices_config, device_bus);

@@ -47,12 +47,13 @@ void expect_message(const std::string& yaml, const std::string& fragment) {
 }
 
 TEST(SimulatedBenchConfig, BadValuesNameKeyValueAndExpectation) {
-  expect_message("simbench: {drive: {node_id: 200}}", "simbench.drive.node_id = '200'");
+  expect_message("simbench: {drive: {node_id: 200}}",
+                 "simbench config: simbench.drive.node_id: got '200', expected");
   expect_message("simbench: {torque_sensor: {type: u8}}",
-                 "simbench.torque_sensor.type = 'u8' (expected i16, i32 or f32)");
+                 "simbench.torque_sensor.type: got 'u8', expected i16, i32 or f32");
   expect_message("simbench: {torque_sensor: {object: \"0x1000:1\"}}",
                  "simbench.torque_sensor.object");
-  expect_message("simbench: {clock: fast}", "simbench.clock = 'fast'");
+  expect_message("simbench: {clock: fast}", "simbench.clock: got 'fast'");
   expect_message("simbench: {encoder: {node_id: 1}}", "three different node ids");
 }
 

@@ -11,10 +11,10 @@ namespace wavebench::modbus {
 
 namespace {
 
+// The message format of every config loader (strict_yaml::RefusedConfig).
 [[noreturn]] void fail(const std::string& key, const std::string& value,
                        const std::string& expected) {
-  throw BrakeConfigError("brake config: key '" + key + "' has value '" + value + "', expected " +
-                         expected);
+  throw BrakeConfigError(strict_yaml::RefusedConfig(key, value, expected, "brake config").what());
 }
 
 std::string text_of(const YAML::Node& n) {
@@ -317,7 +317,7 @@ BrakeClientConfig load_brake_config_file(const std::filesystem::path& path) {
   try {
     root = strict_yaml::parse_strict_yaml(strict_yaml::read_config_file(path), path.string());
   } catch (const strict_yaml::RefusedConfig& e) {
-    throw BrakeConfigError(std::string("brake config: ") + e.what());
+    throw BrakeConfigError(e.what());
   }
   if (root.IsMap() && root["brake"]) {
     if (root["brake"].IsNull()) fail("brake", "", "a section of brake settings (it is empty)");

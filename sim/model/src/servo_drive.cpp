@@ -5,8 +5,9 @@
 #include <string>
 
 namespace wavebench::model {
+namespace {
 
-ServoDrive::ServoDrive(const ServoDriveInput& p) : p_(p) {
+const ServoDriveInput& validated(const ServoDriveInput& p) {
   if (!(p.velocity_gain > 0)) {
     throw std::invalid_argument("input.velocity_gain = " + std::to_string(p.velocity_gain) +
                                 " N*m*s/rad: expected > 0");
@@ -17,27 +18,31 @@ ServoDrive::ServoDrive(const ServoDriveInput& p) : p_(p) {
                                 std::to_string(p.torque_limit) + "/" +
                                 std::to_string(p.speed_limit) + ": expected >= 0 (0 = off)");
   }
+  return p;
 }
 
+double limit_or_none(double limit) {
+  return limit > 0 ? limit : PiController::kNoLimit;
+}
+
+}  // namespace
+
+ServoDrive::ServoDrive(const ServoDriveInput& p)
+    : p_(validated(p)),
+      position_loop_(p.position_gain, 0),
+      velocity_loop_(p.velocity_gain, p.velocity_integral_time) {}
+
 double ServoDrive::speed_command(double theta1) const noexcept {
-  double w =
-      p_.position_control ? p_.position_gain * (p_.position_setpoint - theta1) : p_.speed_setpoint;
-  if (p_.speed_limit > 0) w = std::clamp(w, -p_.speed_limit, p_.speed_limit);
-  return w;
+  const double limit = limit_or_none(p_.speed_limit);
+  if (p_.position_control)
+    return position_loop_.evaluate(p_.position_setpoint - theta1, 0, limit).value;
+  return std::clamp(p_.speed_setpoint, -limit, limit);
 }
 
 ServoOutput ServoDrive::evaluate(double theta1, double omega1, double integral) const noexcept {
-  const double error = speed_command(theta1) - omega1;
-  const double ti = p_.velocity_integral_time;
-  const double demand = p_.velocity_gain * (error + (ti > 0 ? integral / ti : 0.0));
-  ServoOutput out;
-  out.torque = demand;
-  out.integral_rate = ti > 0 ? error : 0.0;
-  if (p_.torque_limit > 0 && std::abs(demand) > p_.torque_limit) {
-    out.torque = demand > 0 ? p_.torque_limit : -p_.torque_limit;
-    if (error * demand > 0) out.integral_rate = 0.0;
-  }
-  return out;
+  const PiOutput v = velocity_loop_.evaluate(speed_command(theta1) - omega1, integral,
+                                             limit_or_none(p_.torque_limit));
+  return {v.value, v.integral_rate};
 }
 
 }  // namespace wavebench::model

@@ -518,12 +518,13 @@ void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::
     std::ostringstream out;
     out << wrapper;
     try {
-      s.devices = simdevices::parse_simulated_bench_config(out.str(), s.devices);
+      s.devices = std::make_shared<const simdevices::SimulatedBenchConfig>(
+          simdevices::parse_simulated_bench_config(out.str()));
       if (v.IsMap()) {
-        if (v["drive"] && v["drive"]["node_id"]) s.drive_node = s.devices.drive.node_id;
-        if (v["encoder"] && v["encoder"]["node_id"]) s.encoder_node = s.devices.encoder.node_id;
+        if (v["drive"] && v["drive"]["node_id"]) s.drive_node = s.devices->drive.node_id;
+        if (v["encoder"] && v["encoder"]["node_id"]) s.encoder_node = s.devices->encoder.node_id;
         if (v["torque_sensor"] && v["torque_sensor"]["node_id"])
-          s.torque_node = s.devices.torque_sensor.node_id;
+          s.torque_node = s.devices->torque_sensor.node_id;
       }
     } catch (const std::invalid_argument& e) {
       throw ConfigError("simulated.simbench", scalar_text(v), e.what());

@@ -48,7 +48,7 @@ std::optional<std::string> SafetyLimitsCheck::check(const storage::SyncSample& s
       have_te0_ = true;
     } else if (over(l.max_te_excursion_rad, te - te0_)) {
       return crossed("TE excursion", te - te0_, l.max_te_excursion_rad, "arcmin",
-                     procedures::kArcminPerRad);
+                     model::kArcminPerRad);
     }
   }
   return std::nullopt;

@@ -4,10 +4,10 @@
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
-#include <variant>
 
 #include "wavebench/config/twin_case_writer.hpp"
 #include "wavebench/model/elastic_stiffness.hpp"
+#include "wavebench/model/stiffness_scaling.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/twin/twin_overlay.hpp"
 
@@ -17,14 +17,6 @@ namespace {
 using procedures::HarmonicOrder;
 using procedures::kArcminPerRad;
 using procedures::kArcsecPerRad;
-
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// Clang before 17 does not deduce aggregate bases without it (the fuzz build uses clang).
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
 
 // The nominal terms' orders, then the standard families of model.md §3, each once.
 std::vector<HarmonicOrder> candidate_orders(const model::GearParams& g,
@@ -87,44 +79,6 @@ void merge_offset(std::vector<model::TeTerm>& terms, double offset_rad) {
   t.amplitude_rad = std::abs(offset_rad);
   t.phase_rad = offset_rad < 0 ? -std::numbers::pi / 2 : std::numbers::pi / 2;
   terms.push_back(t);
-}
-
-// Multiplies every torque of the stiffness law by f (same twist, f times the torque).
-void scale_stiffness(model::StiffnessParams& s, double f) {
-  std::visit(Overloaded{[&](model::LinearPeriodicStiffness& l) {
-                          l.k0 *= f;
-                          for (auto& h : l.harmonics) h.amplitude *= f;
-                        },
-                        [&](model::CubicStiffness& c) {
-                          c.k1 *= f;
-                          c.k3 *= f;
-                        },
-                        [&](model::ThreeSegmentStiffness& c) {
-                          // Same torque breakpoints, every segment f times as stiff.
-                          c.k1 *= f;
-                          c.k2 *= f;
-                          c.k3 *= f;
-                        },
-                        [&](model::TableStiffness& t) {
-                          for (double& v : t.torque_nm) v *= f;
-                        },
-                        [&](model::HystereticBranchStiffness& h) {
-                          h.a_load *= f;
-                          h.b_load *= f;
-                          h.c_load *= f;
-                          h.a_unload *= f;
-                          h.b_unload *= f;
-                          h.c_unload *= f;
-                        },
-                        [&](model::FadingMemoryStiffness& m) {
-                          m.a *= f;
-                          m.b *= f;
-                          m.c *= f;
-                          m.memory_gain *= f;
-                        },
-                        [&](model::BoucWenStiffness& b) { b.k *= f; }},
-             s.law);
-  if (s.mean_stiffness) *s.mean_stiffness *= f;
 }
 
 // Twist of the nominal law under `torque` (elastic forms only; 0 when not elastic).
@@ -224,7 +178,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       // Only a plausible estimate seeds the fit (a factor of five either way at most).
       if (factor >= 0.2 && factor <= 5 && std::isfinite(e.backlash_rad)) {
         params.backlash.total_rad = std::abs(e.backlash_rad);
-        scale_stiffness(params.stiffness, factor);
+        model::scale_stiffness(params.stiffness, factor);
         cal.fitted.push_back("static_estimate");
         replayed = false;
       }
@@ -313,7 +267,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
       } else {
         // x → (1 + ε)·x under the same torque: k → k/(1 + ε); kept within a factor of 5.
         const double eps = std::clamp(c / twist_scale, -0.8, 4.0);
-        scale_stiffness(params.stiffness, 1.0 / (1.0 + eps));
+        model::scale_stiffness(params.stiffness, 1.0 / (1.0 + eps));
       }
     }
     for (const auto& name : {std::string("te_harmonics"), std::string("offset")}) {

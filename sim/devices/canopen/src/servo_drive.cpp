@@ -113,7 +113,9 @@ std::int32_t Cia402ServoDrive::velocity_out(double increments_per_s) const {
 Cia402ServoDrive::Cia402ServoDrive(const ServoDriveConfig& config, FrameSink sink)
     : CanopenNode(config.node_id, config.identity, std::move(sink)),
       config_(config),
-      units_(config.object_units()) {
+      units_(config.object_units()),
+      position_loop_(config.position_gain, 0),
+      velocity_loop_(config.velocity_gain, config.velocity_integral_time) {
   add_profile_objects();
   set_default_tpdo(1, {{0x6041, 0, 16}, {0x6064, 0, 32}}, true, 1);
   if (config_.has(0x6077)) {
@@ -253,7 +255,7 @@ void Cia402ServoDrive::on_reset_application() {
   active_mode_ = Cia402Mode::kNone;
   last_controlword_ = 0;
   torque_ = 0;
-  integral_ = 0;
+  velocity_loop_.reset();
   limit_active_ = false;
   pp_buffered_ = false;
   set_point_ack_ = false;
@@ -307,7 +309,7 @@ void Cia402ServoDrive::on_controlword() {
     if (after == Cia402State::kOperationEnabled && before != Cia402State::kQuickStopActive) {
       profile_.reset(actual_position_, 0);
       pp_target_ = csp_from_ = csp_to_ = actual_position_;
-      integral_ = 0;
+      velocity_loop_.reset();
       profile_done_ = true;
       pp_buffered_ = false;
       target_reached_ = true;
@@ -449,7 +451,7 @@ double Cia402ServoDrive::control(const PlantState& plant, double dt) {
   }
   if (!machine_.power_stage_on()) {
     torque_ = 0;
-    integral_ = 0;
+    velocity_loop_.reset();
     profile_.reset(actual_position_, 0);
     if (active_mode_ != Cia402Mode::kProfilePosition || profile_done_)
       pp_target_ = actual_position_;
@@ -462,26 +464,14 @@ double Cia402ServoDrive::control(const PlantState& plant, double dt) {
   const bool position_loop = is_position_mode(active_mode_) ||
                              machine_.state() == Cia402State::kQuickStopActive ||
                              active_mode_ == Cia402Mode::kNone;
-  double v_ref =
-      position_loop ? v_ff + config_.position_gain * (p_demand - actual_position_) : v_ff;
   const double v_max = od().get<std::uint32_t>(0x6080, 0) / 60.0 * config_.counts_per_revolution;
-  if (std::abs(v_ref) > v_max) {
-    v_ref = std::copysign(v_max, v_ref);
-    limit_active_ = true;
-  }
-  const double error = v_ref / cpr - plant.omega_in;
+  const model::PiOutput v_ref =
+      position_loop_.evaluate(position_loop ? p_demand - actual_position_ : 0.0, 0, v_max, v_ff);
   const double t_max =
       od().get<std::uint16_t>(0x6072, 0) / 1000.0 * od().get<std::uint32_t>(0x6076, 0) / 1000.0;
-  if (config_.velocity_integral_time > 0) {
-    integral_ += config_.velocity_gain * error * dt / config_.velocity_integral_time;
-    integral_ = std::clamp(integral_, -t_max, t_max);  // anti-windup
-  }
-  double torque = config_.velocity_gain * error + integral_;
-  if (std::abs(torque) > t_max) {
-    torque = std::copysign(t_max, torque);
-    limit_active_ = true;
-  }
-  torque_ = torque;
+  const model::PiOutput torque = velocity_loop_.step(v_ref.value / cpr - plant.omega_in, dt, t_max);
+  if (v_ref.limited || torque.limited) limit_active_ = true;
+  torque_ = torque.value;
 
   // Following error supervision in the position modes.
   const double following = p_demand - actual_position_;

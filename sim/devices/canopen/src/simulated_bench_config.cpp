@@ -13,13 +13,18 @@ namespace wavebench::simdevices {
 namespace {
 
 std::string describe(const YAML::Node& node) {
-  if (node.IsScalar()) return "'" + node.Scalar() + "'";
-  return node.IsMap() ? "a map" : node.IsSequence() ? "a list" : "nothing";
+  if (node.IsScalar()) return node.Scalar();
+  return node.IsMap() ? "<map>" : node.IsSequence() ? "<list>" : "<null>";
 }
 
+// The message format of every config loader (strict_yaml::RefusedConfig).
+[[noreturn]] void bad(const std::string& key, const std::string& value,
+                      const std::string& expected) {
+  throw std::invalid_argument(
+      strict_yaml::RefusedConfig(key, value, expected, "simbench config").what());
+}
 [[noreturn]] void bad(const std::string& key, const YAML::Node& node, const std::string& expected) {
-  throw std::invalid_argument("simbench config: " + key + " = " + describe(node) + " (expected " +
-                              expected + ")");
+  bad(key, describe(node), expected);
 }
 
 // Unknown keys are refused: a misspelt key would otherwise leave its default in place silently.
@@ -281,9 +286,9 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
   }
   const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
   if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
-    throw std::invalid_argument("simbench config: node ids " + std::to_string(ids[0]) + ", " +
-                                std::to_string(ids[1]) + ", " + std::to_string(ids[2]) +
-                                " (expected three different node ids)");
+    bad("simbench.*.node_id",
+        std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " + std::to_string(ids[2]),
+        "three different node ids");
   }
   if (base.input_encoder &&
       (base.input_encoder->node_id == ids[0] || base.input_encoder->node_id == ids[1] ||

@@ -1,8 +1,9 @@
 #pragma once
 // A CiA 402 style servo drive: position loop (P) -> speed command (limited) -> velocity loop
 // (PI) -> torque command (limited). The integrator is frozen while the torque saturates in
-// the direction it would push further (conditional integration against wind-up).
+// the direction it would push further (conditional integration against wind-up, PiController).
 #include "wavebench/model/gear_params.hpp"
+#include "wavebench/model/pi_controller.hpp"
 
 namespace wavebench::model {
 
@@ -20,6 +21,8 @@ class ServoDrive {
 
  private:
   ServoDriveInput p_;
+  PiController position_loop_;  // P: position error -> speed command
+  PiController velocity_loop_;  // PI: speed error -> torque, integral owned by the solver
 };
 
 }  // namespace wavebench::model

@@ -17,7 +17,10 @@
 #include "wavebench/bench/drive_unit_choice.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
-#include "wavebench/simdevices/simulated_bench.hpp"
+
+namespace wavebench::simdevices {
+struct SimulatedBenchConfig;
+}
 
 namespace wavebench::bench {
 
@@ -92,7 +95,10 @@ struct TrueGearVariation {
 struct SimulatedSettings {
   std::filesystem::path true_gear_case;  // a twin case; its gear, varied, is the unit's truth
   TrueGearVariation variation;
-  simdevices::SimulatedBenchConfig devices;  // node ids, noise, ...; clock set by the bench
+  // The `simbench:` section as the simulator reads it (node ids, noise, ...; clock set by the
+  // bench factory), null without one: the simulator's defaults. Behind a pointer so that the
+  // production bench's headers do not include the simulator.
+  std::shared_ptr<const simdevices::SimulatedBenchConfig> devices;
   // A simulated device sits at can.nodes unless simbench names its node_id: a miswired bench
   // (the commissioning check's wrong-node case).
   std::optional<std::uint8_t> drive_node, encoder_node, torque_node;

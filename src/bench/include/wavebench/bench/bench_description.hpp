@@ -4,7 +4,7 @@
 #include <string>
 
 #include "wavebench/model/gear_params.hpp"
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/model/gear_sense.hpp"
 
 namespace wavebench::bench {
 
@@ -23,9 +23,9 @@ struct SafetyLimits {
 };
 
 struct BenchDescription {
-  std::string name;             // "sim" for the in-process simulated bench, or the config's name
-  std::string unit_serial;      // the gear under test
-  procedures::GearSense sense;  // ratio N and the output direction sign
+  std::string name;         // "sim" for the in-process simulated bench, or the config's name
+  std::string unit_serial;  // the gear under test
+  model::GearSense sense;   // ratio N and the output direction sign
   double sync_period_s = 1e-3;
   bool simulated_clock = false;
   double rated_torque_nm = 0;  // of the unit under test (lost-motion ladder, ±x % of rated)

@@ -10,15 +10,14 @@
 
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/bench/sample_assembler.hpp"
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/model/gear_sense.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::bench {
 
 class SafetyLimitsCheck {
  public:
-  SafetyLimitsCheck(SafetyLimits limits, procedures::GearSense sense)
-      : limits_(limits), sense_(sense) {}
+  SafetyLimitsCheck(SafetyLimits limits, model::GearSense sense) : limits_(limits), sense_(sense) {}
 
   // coil_temperature_c: the brake's latest fresh readback, if any.
   std::optional<std::string> check(const storage::SyncSample& sample, const DriveCycleValues& drive,
@@ -29,7 +28,7 @@ class SafetyLimitsCheck {
 
  private:
   SafetyLimits limits_;
-  procedures::GearSense sense_;
+  model::GearSense sense_;
   bool have_te0_ = false;
   double te0_ = 0;
 };

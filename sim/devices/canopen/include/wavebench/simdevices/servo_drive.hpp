@@ -11,6 +11,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "wavebench/model/pi_controller.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 #include "wavebench/simdevices/canopen_node.hpp"
 #include "wavebench/simdevices/cia402_state_machine.hpp"
@@ -140,6 +141,8 @@ class Cia402ServoDrive final : public CanopenNode {
 
   ServoDriveConfig config_;
   DriveObjectUnits units_;
+  model::PiController position_loop_;  // P: position error [inc] -> velocity [inc/s]
+  model::PiController velocity_loop_;  // PI: speed error [rad/s] -> torque [N*m]
   Cia402StateMachine machine_;
   MotionProfile profile_;
   Cia402Mode active_mode_ = Cia402Mode::kNone;
@@ -148,7 +151,6 @@ class Cia402ServoDrive final : public CanopenNode {
   double actual_position_ = 0;  // [inc], unwrapped
   double actual_velocity_ = 0;  // [inc/s]
   double torque_ = 0;           // [N*m] last command
-  double integral_ = 0;         // velocity loop integral [N*m]
   bool limit_active_ = false;
 
   // Profile position

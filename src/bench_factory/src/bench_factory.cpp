@@ -2,13 +2,13 @@
 
 #include <boost/asio/io_context.hpp>
 #include <cmath>
-#include <variant>
 
 #include "wavebench/bench/canopen_bench.hpp"
 #include "wavebench/can/socket_can_bus.hpp"
 #include "wavebench/can/virtual_can_bus.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/config/twin_case.hpp"
+#include "wavebench/model/stiffness_scaling.hpp"
 #include "wavebench/simdevices/brake_server.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
 
@@ -132,44 +132,11 @@ class SocketCanBench final : public ForwardingBench {
   std::unique_ptr<can::SocketCanBus> bus_;
 };
 
-void scale_stiffness(model::StiffnessLaw& law, double s) {
-  std::visit(
-      [s](auto& l) {
-        using T = std::decay_t<decltype(l)>;
-        if constexpr (std::is_same_v<T, model::LinearPeriodicStiffness>) {
-          l.k0 *= s;
-          for (auto& h : l.harmonics) h.amplitude *= s;
-        } else if constexpr (std::is_same_v<T, model::CubicStiffness>) {
-          l.k1 *= s;
-          l.k3 *= s;
-        } else if constexpr (std::is_same_v<T, model::ThreeSegmentStiffness>) {
-          l.k1 *= s;
-          l.k2 *= s;
-          l.k3 *= s;
-        } else if constexpr (std::is_same_v<T, model::TableStiffness>) {
-          for (auto& t : l.torque_nm) t *= s;
-        } else if constexpr (std::is_same_v<T, model::BoucWenStiffness>) {
-          l.k *= s;
-        } else if constexpr (std::is_same_v<T, model::FadingMemoryStiffness>) {
-          l.a *= s;
-          l.b *= s;
-          l.c *= s;
-        } else {
-          l.a_load *= s;
-          l.b_load *= s;
-          l.c_load *= s;
-          l.a_unload *= s;
-          l.b_unload *= s;
-          l.c_unload *= s;
-        }
-      },
-      law);
-}
-
 }  // namespace
 
 simdevices::SimulatedBenchConfig simulated_devices_from(const BenchConfig& config) {
-  auto devices = config.simulated->devices;
+  auto devices = config.simulated && config.simulated->devices ? *config.simulated->devices
+                                                               : simdevices::SimulatedBenchConfig{};
   devices.gear = true_gear_from(config);
   devices.clock = config.description.simulated_clock ? simdevices::BenchClock::kSyncDriven
                                                      : simdevices::BenchClock::kRealTime;
@@ -208,10 +175,7 @@ model::GearParams true_gear_from(const BenchConfig& config) {
     term.amplitude_rad *= v.te_amplitude_scale;
     term.phase_rad += v.te_phase_shift_rad;
   }
-  if (v.stiffness_scale != 1.0) {
-    scale_stiffness(gear.stiffness.law, v.stiffness_scale);
-    if (gear.stiffness.mean_stiffness) *gear.stiffness.mean_stiffness *= v.stiffness_scale;
-  }
+  if (v.stiffness_scale != 1.0) model::scale_stiffness(gear.stiffness, v.stiffness_scale);
   if (v.backlash_rad) gear.backlash.total_rad = *v.backlash_rad;
   const double ratio = config.description.sense.ratio;
   if (std::abs(gear.geometry.ratio - ratio) > 1e-9 * ratio) {

@@ -1,9 +1,9 @@
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/model/gear_sense.hpp"
 
 #include <stdexcept>
 #include <string>
 
-namespace wavebench::procedures {
+namespace wavebench::model {
 
 void GearSense::validate() const {
   if (!(ratio > 0)) {
@@ -15,4 +15,4 @@ void GearSense::validate() const {
   }
 }
 
-}  // namespace wavebench::procedures
+}  // namespace wavebench::model

@@ -7,14 +7,13 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/model/gear_params.hpp"
+#include "wavebench/simdevices/simulated_bench.hpp"
 
 namespace wavebench::can {
 class VirtualCanBus;
 }  // namespace wavebench::can
 
 namespace wavebench::simdevices {
-struct SimulatedBenchConfig;
-class SimulatedBench;
 class BrakeServer;
 }  // namespace wavebench::simdevices
 
