@@ -184,8 +184,11 @@ TEST(DriveUnitsOnSimulatedBench, LimitThatNeedsAnAbsentChannelStopsTheConnect) {
 TEST(DriveUnitsOnSimulatedBench, ZeroOrNegativeFactorReadFromTheDriveStopsTheConnect) {
   const auto with_feed = [](std::uint32_t feed, std::uint32_t gear_motor) {
     auto c = bench_config("sim-factor-group-drive.yaml");
-    c.simulated->devices.drive.factor_group.feed = feed;
-    c.simulated->devices.drive.factor_group.gear_motor_revolutions = gear_motor;
+    auto devices = std::make_shared<simdevices::SimulatedBenchConfig>(
+        c.simulated->devices ? *c.simulated->devices : simdevices::SimulatedBenchConfig{});
+    devices->drive.factor_group.feed = feed;
+    devices->drive.factor_group.gear_motor_revolutions = gear_motor;
+    c.simulated->devices = devices;
     return c;
   };
   auto m = connect_error(with_feed(0, 3));

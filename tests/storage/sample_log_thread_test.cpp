@@ -104,7 +104,7 @@ TEST(SampleLogThread, AFailedWriteIsReportedOnceFromTheWriterThreadAndTheRestCou
   RecordedFailures failures;
   {
     // Room for the header and 25 records: the flush after sample 29 fails part-way.
-    wavebench::testing::FileSizeLimit limit(kSampleLogHeaderSize + 25 * kSampleLogRecordSize);
+    wavebench::testing::FileSizeLimit limit(sample_log_header_size(0) + 25 * kSampleLogRecordSize);
     SampleLogThread thread(writer, failures.sink());
     for (std::uint64_t i = 0; i < 100; ++i) ASSERT_TRUE(thread.try_push(make_sample(i)));
     thread.finish();
