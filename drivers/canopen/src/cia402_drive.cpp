@@ -66,18 +66,7 @@ namespace dt = datatype;
 // SDO: the state machine, modes, profile moves and velocity; TPDO1 statusword and position,
 // TPDO2 velocity and following error (SampleAssembler); the controlword is RPDO-mappable for the
 // quick stop.
-constexpr UsedObject kDriveObjects[] = {
-    {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
-    {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
-    {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
-    {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
-    {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
-    {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
-    {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
-    {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
-    {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+constexpr auto kDriveObjects = with_node_objects(std::to_array<UsedObject>({
     {0x1A00, 2, "TPDO1 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
     {0x1801, 1, "TPDO2 COB-ID", dt::kUnsigned32, 0, kReadWrite},
     {0x1801, 2, "TPDO2 transmission type", dt::kUnsigned8, 0, kReadWrite},
@@ -97,7 +86,7 @@ constexpr UsedObject kDriveObjects[] = {
     {0x6084, 0, "profile deceleration", dt::kUnsigned32, 0, kReadWrite},
     {0x60F4, 0, "following error actual value", dt::kInteger32, 0, kRead, kTpdo, true},
     {0x60FF, 0, "target velocity", dt::kInteger32, 0, kReadWrite},
-};
+}));
 
 }  // namespace
 

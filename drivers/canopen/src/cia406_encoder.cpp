@@ -11,24 +11,13 @@ using enum UsedAccess;
 using enum UsedInPdo;
 namespace dt = datatype;
 
-constexpr UsedObject kEncoderObjects[] = {
-    {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
-    {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
-    {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
-    {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
-    {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
-    {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
-    {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
-    {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
-    {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+constexpr auto kEncoderObjects = with_node_objects(std::to_array<UsedObject>({
     {0x6004, 0, "position value", dt::kUnsigned32, 0, kRead, kTpdo},
     {0x6501, 0, "single-turn resolution", dt::kUnsigned32, 0, kRead},
     // CiA 406 v3 says UNSIGNED16; some devices use UNSIGNED32 (read_configuration takes both).
     {0x6502, 0, "number of distinguishable revolutions", dt::kUnsigned16, dt::kUnsigned32, kRead},
     {0x6503, 0, "alarms", dt::kUnsigned16, 0, kRead},
-};
+}));
 
 }  // namespace
 

@@ -3,6 +3,8 @@
 // Cia406Encoder, TorqueSensor::used_objects): the EDS check before connecting and the
 // commissioning check read the same list.
 
+#include <array>
+#include <cstddef>
 #include <cstdint>
 #include <span>
 #include <string>
@@ -25,6 +27,39 @@ struct UsedObject {
   UsedInPdo pdo = UsedInPdo::kNone;
   bool optional = false;  // the client copes without it (an absent channel, a skipped write)
 };
+
+// The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
+// heartbeat, identity, TPDO1 with one mapped object), written once for every device's list.
+inline constexpr std::size_t kNodeObjectCount = 11;
+constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
+  using enum UsedAccess;
+  using enum UsedInPdo;
+  namespace dt = datatype;
+  return {{
+      {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
+      {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
+      {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
+      {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
+      {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
+      {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
+      {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
+      {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
+      {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
+      {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
+      {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+  }};
+}
+
+// node_objects() followed by a device's own objects.
+template <std::size_t N>
+constexpr std::array<UsedObject, kNodeObjectCount + N> with_node_objects(
+    const std::array<UsedObject, N>& own) {
+  std::array<UsedObject, kNodeObjectCount + N> all{};
+  const auto node = node_objects();
+  for (std::size_t i = 0; i < kNodeObjectCount; ++i) all[i] = node[i];
+  for (std::size_t i = 0; i < N; ++i) all[kNodeObjectCount + i] = own[i];
+  return all;
+}
 
 std::string describe(const UsedObject& object);  // "0x6041:0 statusword"
 
