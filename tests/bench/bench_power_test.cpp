@@ -28,7 +28,7 @@ std::uint16_t brake_watchdog_register(SimBench& sim) {
 TEST(BenchPower, ConnectedBenchIsInactiveAndStillReadsEveryChannel) {
   SimBench sim(sim_config());
   sim.bench->connect();
-  ASSERT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  ASSERT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   EXPECT_TRUE(powered_off(sim.drive_state())) << simdevices::to_string(sim.drive_state());
   EXPECT_FALSE(sim.brake_output_on());
   const auto before = sim.observer.samples.size();
@@ -51,9 +51,18 @@ TEST(BenchPower, ConnectedBenchIsInactiveAndStillReadsEveryChannel) {
 TEST(BenchPower, FirstMotionEnablesAndDeactivateSwitchesDriveAndBrakeOff) {
   SimBench sim(sim_config());
   sim.bench->connect();
+  // A zero brake torque while inactive is a setpoint only: the output stays off.
+  sim.bench->set_brake_torque(0.0);
+  sim.bench->wait_for(0.1);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
+  EXPECT_FALSE(sim.brake_output_on());
+  EXPECT_TRUE(powered_off(sim.drive_state()));
+
   sim.bench->set_brake_torque(2.0);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kActive);
   sim.bench->move_input_to(sim.bench->latest_sample().theta_in_rad + 2.0, 100 * kRpm);
   EXPECT_EQ(sim.drive_state(), Cia402State::kOperationEnabled);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kActive);
   sim.bench->wait_for(0.1);
   EXPECT_TRUE(sim.brake_output_on());
 
@@ -61,7 +70,7 @@ TEST(BenchPower, FirstMotionEnablesAndDeactivateSwitchesDriveAndBrakeOff) {
   EXPECT_EQ(sim.drive_state(), Cia402State::kReadyToSwitchOn);
   EXPECT_FALSE(sim.brake_output_on());
   EXPECT_TRUE(sim.brake_setpoint_zero());
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   // Still acquiring while inactive.
   const auto samples = sim.bench->acquisition_stats().samples;
   sim.bench->idle_for(0.1);
@@ -94,7 +103,7 @@ TEST(BenchPower, AFaultKeepsTheSafeStateAndTheResetDoesNotEnable) {
   EXPECT_EQ(sim.drive_state(), Cia402State::kSwitchOnDisabled);
 
   sim.bench->clear_fault();
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   EXPECT_TRUE(powered_off(sim.drive_state())) << simdevices::to_string(sim.drive_state());
   EXPECT_FALSE(sim.brake_output_on());
   sim.bench->move_input_to(sim.bench->latest_sample().theta_in_rad + 1.0, 50 * kRpm);
@@ -125,7 +134,7 @@ TEST(BenchPower, DisconnectIsACleanExit) {
 
   // And the bench connects again from there, inactive.
   sim.bench->connect();
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   EXPECT_TRUE(powered_off(sim.drive_state()));
   EXPECT_EQ(devices.drive().nmt_state(), simdevices::NmtState::kOperational);
 }

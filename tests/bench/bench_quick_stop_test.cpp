@@ -175,7 +175,7 @@ TEST(BenchQuickStop, ADriveIgnoringTheRpdoGetsNmtStopAfterTheTimeout) {
 
   // The reset starts the drive again; it stays off until motion needs it.
   sim.bench->clear_fault();
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   EXPECT_EQ(drive.nmt_state(), simdevices::NmtState::kOperational);
   EXPECT_EQ(sim.drive_state(), Cia402State::kSwitchOnDisabled);
   sim.bench->run_input_velocity(30 * kRpm);

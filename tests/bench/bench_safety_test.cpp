@@ -72,7 +72,7 @@ TEST(BenchSafety, HeartbeatLossTrips) {
   // Heartbeat back: it can, and the bench moves again.
   sim.access->devices().encoder().od().set<std::uint16_t>(0x1017, 0, 100);
   sim.bench->clear_fault();
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   sim.bench->move_input_to(sim.bench->latest_sample().theta_in_rad + 1.0, 50 * kRpm);
 }
 
@@ -143,7 +143,7 @@ TEST(BenchSafety, OperatorStopFromAnotherThreadTrips) {
   EXPECT_EQ(reason, "operator stop: test stop");
   expect_safe_state(sim, reason);
   sim.bench->clear_fault();
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   EXPECT_EQ(sim.bench->fault_reason(), "");
   sim.bench->run_input_velocity(50 * kRpm);
   sim.bench->wait_for(0.5);

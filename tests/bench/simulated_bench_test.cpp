@@ -21,7 +21,7 @@ TEST(SimulatedBench, ConnectsAndAProfilePositionMoveLands) {
   ASSERT_NE(sim.access, nullptr);
   EXPECT_EQ(sim.bench->state(), BenchLifecycle::kUnconfigured);
   sim.bench->connect();
-  ASSERT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  ASSERT_EQ(sim.bench->state(), BenchLifecycle::kInactive);
   // Inactive until the first motion command (bench_power_test.cpp).
   EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kSwitchOnDisabled);
   // The twin's gear is the nominal case, the simulated unit's is varied from it.
@@ -44,7 +44,7 @@ TEST(SimulatedBench, ConnectsAndAProfilePositionMoveLands) {
 
   EXPECT_THROW(sim.bench->move_input_to(0, -1), std::invalid_argument);
   EXPECT_THROW(sim.bench->move_input_to(0, 1e6), std::invalid_argument);
-  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kReady);
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kActive);
   sim.bench->disconnect();
   EXPECT_EQ(sim.bench->state(), BenchLifecycle::kUnconfigured);
   EXPECT_FALSE(sim.brake_output_on());

@@ -29,8 +29,8 @@ TEST_F(DaemonApiTest, EverythingThatMovesHardwareNeedsTheToken) {
       EXPECT_FALSE(reply.body.value("detail", "").empty());
     }
   }
-  EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kReady);    // nothing was tripped
-  EXPECT_TRUE(client().get("/api/runs").body["runs"].empty());  // nothing was started
+  EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kInactive);  // nothing was tripped
+  EXPECT_TRUE(client().get("/api/runs").body["runs"].empty());   // nothing was started
 }
 
 TEST_F(DaemonApiTest, ARunCompletesWithItsSamplesAndResults) {
@@ -114,7 +114,7 @@ TEST_F(DaemonApiTest, OneRunAtATime) {
 TEST_F(DaemonApiTest, AbortWithoutARunIsAConflict) {
   const auto reply = client().post("/api/abort");
   EXPECT_EQ(reply.status, 409);
-  EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kReady);
+  EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kInactive);
 }
 
 TEST_F(DaemonApiTest, BadRunRequestsAre400NamingTheKey) {

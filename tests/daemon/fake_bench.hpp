@@ -26,7 +26,7 @@ class FakeBench : public bench::Bench {
   const bench::BenchDescription& description() const noexcept override { return description_; }
   void connect() override {
     if (fail_connect_) throw std::runtime_error("drive node 1: no boot-up within 1 s");
-    state_ = bench::BenchLifecycle::kReady;
+    state_ = bench::BenchLifecycle::kInactive;
   }
   void disconnect() noexcept override { state_ = bench::BenchLifecycle::kUnconfigured; }
   bench::BenchLifecycle state() const noexcept override { return state_; }
@@ -37,7 +37,7 @@ class FakeBench : public bench::Bench {
   void clear_fault() override {
     std::lock_guard lock(mutex_);
     reason_.clear();
-    state_ = bench::BenchLifecycle::kReady;
+    state_ = bench::BenchLifecycle::kInactive;
   }
   void move_input_to(double theta, double) override {
     check();

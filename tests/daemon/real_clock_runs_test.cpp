@@ -61,7 +61,7 @@ TEST(DaemonOnTheRealClock, StaticRunsInARowNeitherTripNorNeedAReset) {
   BenchThread thread([config] { return bench::make_bench(config); }, store, *launcher,
                      "sim on the real clock", live);
   thread.start();
-  ASSERT_EQ(thread.status().lifecycle, bench::BenchLifecycle::kReady)
+  ASSERT_EQ(thread.status().lifecycle, bench::BenchLifecycle::kInactive)
       << thread.status().connect_error;
 
   std::uint64_t heartbeats_before = 0;
@@ -83,7 +83,7 @@ TEST(DaemonOnTheRealClock, StaticRunsInARowNeitherTripNorNeedAReset) {
     // Idle a little: a trip judged on heartbeats held during the post-run work would show now.
     std::this_thread::sleep_for(std::chrono::milliseconds(700));
     const auto s = thread.status();
-    ASSERT_EQ(s.lifecycle, bench::BenchLifecycle::kReady)
+    ASSERT_EQ(s.lifecycle, bench::BenchLifecycle::kInactive)
         << "after run " << i << ": " << s.fault_reason;
     ASSERT_TRUE(s.acquisition);
     EXPECT_GT(s.acquisition->drive_heartbeats, heartbeats_before) << "after run " << i;
@@ -135,7 +135,7 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
     status = client.get("/api/status").body;
   } while (std::chrono::steady_clock::now() < deadline &&
            (status["acquisition"].is_null() || status["acquisition"]["brake_output_on"].is_null()));
-  EXPECT_EQ(status["lifecycle"], "ready") << status.dump();
+  EXPECT_EQ(status["lifecycle"], "inactive") << status.dump();
   EXPECT_TRUE(status["run"].is_null());
   const auto& acquisition = status["acquisition"];
   ASSERT_TRUE(acquisition["drive_statusword"].is_number()) << status.dump();

@@ -198,8 +198,10 @@ TEST(DaemonClient, NoDaemonIsReportedAsUnreachable) {
 TEST(DaemonState, FromLifecycleAndRun) {
   using bench::BenchLifecycle;
   EXPECT_EQ(daemon_state_of(BenchLifecycle::kUnconfigured, false), DaemonState::kIdle);
-  EXPECT_EQ(daemon_state_of(BenchLifecycle::kReady, false), DaemonState::kReady);
-  EXPECT_EQ(daemon_state_of(BenchLifecycle::kReady, true), DaemonState::kRunning);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kInactive, false), DaemonState::kReady);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kActive, false), DaemonState::kReady);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kActive, true), DaemonState::kRunning);
+  EXPECT_EQ(daemon_state_of(BenchLifecycle::kInactive, true), DaemonState::kRunning);
   EXPECT_EQ(daemon_state_of(BenchLifecycle::kFault, true), DaemonState::kFault);
   EXPECT_STREQ(daemon_state_name(DaemonState::kFault), "fault");
 }

@@ -46,7 +46,7 @@ class HostileHttp : public DaemonFixture {
     ASSERT_TRUE(status.answered);
     EXPECT_EQ(status.status, 200);
     EXPECT_EQ(status.json.value("state", ""), "ready") << status.body;
-    EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kReady);
+    EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kInactive);
     EXPECT_TRUE(client().get("/api/runs").body["runs"].empty());
   }
 };

@@ -24,7 +24,7 @@ PlantBench::PlantBench(model::GearParams gear, PlantBenchOptions options)
 void PlantBench::connect() {
   profile_.reset(plant_.state().theta_in);
   target_ = plant_.state().theta_in;
-  lifecycle_ = bench::BenchLifecycle::kReady;
+  lifecycle_ = bench::BenchLifecycle::kInactive;
   cycle();
 }
 
@@ -48,7 +48,7 @@ void PlantBench::clear_fault() {
   }
   profile_.reset(plant_.state().theta_in, plant_.state().omega_in);
   mode_ = Mode::kHold;
-  lifecycle_ = bench::BenchLifecycle::kReady;
+  lifecycle_ = bench::BenchLifecycle::kInactive;
 }
 
 void PlantBench::require_ready() {
@@ -61,7 +61,7 @@ void PlantBench::require_ready() {
     trip(reason);
   }
   if (lifecycle_ == bench::BenchLifecycle::kFault) throw bench::BenchAborted(fault_reason());
-  if (lifecycle_ != bench::BenchLifecycle::kReady) {
+  if (!bench::operational(lifecycle_)) {
     throw std::runtime_error("plant bench: not connected");
   }
 }
@@ -133,11 +133,10 @@ void PlantBench::cycle() {
   sample.brake_torque_nm = brake_;
   latest_ = sample;
   for (auto* o : observers_) o->on_sample(sample);
-  if (options_.trip_at_s > 0 && now() >= options_.trip_at_s &&
-      lifecycle_ == bench::BenchLifecycle::kReady) {
+  if (options_.trip_at_s > 0 && now() >= options_.trip_at_s && bench::operational(lifecycle_)) {
     trip(options_.trip_reason);
   }
-  if (stop_requested_ && lifecycle_ == bench::BenchLifecycle::kReady) {
+  if (stop_requested_ && bench::operational(lifecycle_)) {
     std::string reason;
     {
       std::lock_guard lock(reason_mutex_);

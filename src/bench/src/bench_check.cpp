@@ -248,18 +248,6 @@ class Check {
     }
   }
 
-  std::vector<canopen::PdoConfig> expected_tpdos(const BenchCanopenDevice& d) const {
-    if (d.node == config_.can.drive_node)
-      return {SampleAssembler::drive_position_pdo(d.node),
-              SampleAssembler::drive_velocity_pdo(d.node)};
-    if (d.node == config_.can.encoder_node) return {SampleAssembler::encoder_pdo(d.node)};
-    canopen::TorqueSensor sensor(bench_.master().sdo(d.node), config_.torque_sensor.sensor);
-    canopen::PdoConfig torque;
-    torque.cob_id = canopen::tpdo_cob_id(1, d.node);
-    torque.entries = {canopen::PdoEntry::decode(sensor.mapping_entry())};
-    return {torque};
-  }
-
   void pdo_row(const BenchCanopenDevice& d, bool answering) {
     const auto label = device_label(d);
     if (!answering) {
@@ -270,7 +258,7 @@ class Check {
     std::string seen;
     std::string wrong;
     unsigned number = 0;
-    for (const auto& pdo : expected_tpdos(d)) {
+    for (const auto& pdo : d.tpdos) {
       ++number;
       const auto map = static_cast<std::uint16_t>(0x1A00 + number - 1);
       std::error_code ec;

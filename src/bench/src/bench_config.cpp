@@ -378,7 +378,7 @@ void read_devices(const YAML::Node& root, BenchConfig& c, const std::filesystem:
 }
 
 // `devices:`: channel name -> {kind, node, sign, the kind's keys}. Kinds come from the
-// registry (channel_device_registry.cpp), so a new kind needs no change here beyond its keys.
+// registry (device_kind_registry.cpp), so a new kind needs no change here beyond its keys.
 void read_channel_devices(const YAML::Node& root, BenchConfig& c) {
   optional(root, "devices", [&](const YAML::Node& n) {
     if (!n.IsMap()) throw ConfigError("devices", scalar_text(n), "a mapping of channel names");

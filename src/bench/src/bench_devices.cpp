@@ -1,31 +1,41 @@
 #include "wavebench/bench/bench_devices.hpp"
 
-#include "wavebench/canopen/cia402_drive.hpp"
-#include "wavebench/canopen/cia406_encoder.hpp"
-#include "wavebench/canopen/torque_sensor.hpp"
+#include "wavebench/bench/channel_device.hpp"
 
 namespace wavebench::bench {
 
+BenchDeviceSet make_bench_devices(const BenchConfig& config) {
+  BenchDeviceSet set;
+  set.drive = std::make_unique<Cia402DriveDevice>(config.can.drive_node, config.drive);
+  ChannelDeviceSettings encoder;
+  encoder.channel = "theta_out";
+  encoder.kind = "cia406_encoder";
+  encoder.node = config.can.encoder_node;
+  encoder.counts_per_turn = config.encoder.counts_per_turn;
+  encoder.turns = config.encoder.turns;
+  set.sensors.push_back(
+      find_channel_device_kind("cia406_encoder")->make("output encoder", encoder));
+  ChannelDeviceSettings torque;
+  torque.channel = "torque";
+  torque.kind = "torque_sensor";
+  torque.node = config.can.torque_node;
+  torque.torque = config.torque_sensor.sensor;
+  set.sensors.push_back(find_channel_device_kind("torque_sensor")->make("torque sensor", torque));
+  for (const auto& d : config.devices) set.sensors.push_back(make_channel_device(d));
+  return set;
+}
+
 std::vector<BenchCanopenDevice> canopen_devices(const BenchConfig& config) {
-  const auto drive = canopen::Cia402Drive::used_objects();
-  const auto encoder = canopen::Cia406Encoder::used_objects();
-  return {
-      {"servo drive",
-       "drive",
-       config.can.drive_node,
-       0x0192,
-       {drive.begin(), drive.end()},
-       &config.drive.expect},
-      {"output encoder",
-       "encoder",
-       config.can.encoder_node,
-       0x0196,
-       {encoder.begin(), encoder.end()},
-       &config.encoder.expect},
-      {"torque sensor", "torque_sensor", config.can.torque_node, 0,
-       canopen::TorqueSensor::used_objects(config.torque_sensor.sensor),
-       &config.torque_sensor.expect},
-  };
+  const auto set = make_bench_devices(config);
+  const CanopenDevice* core[] = {set.drive.get(), set.sensors[0].get(), set.sensors[1].get()};
+  const char* keys[] = {"drive", "encoder", "torque_sensor"};
+  const NodeExpectations* expect[] = {&config.drive.expect, &config.encoder.expect,
+                                      &config.torque_sensor.expect};
+  std::vector<BenchCanopenDevice> out;
+  for (std::size_t i = 0; i < 3; ++i)
+    out.push_back({core[i]->name(), keys[i], core[i]->node(), core[i]->profile(),
+                   core[i]->used_objects(), core[i]->tpdos(), expect[i]});
+  return out;
 }
 
 std::vector<std::string> eds_problems(const BenchConfig& config) {

@@ -8,8 +8,8 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "wavebench/bench/cia402_drive_device.hpp"
 #include "wavebench/bench/drive_factor_group.hpp"
-#include "wavebench/bench/sample_assembler.hpp"
 #include "wavebench/canopen/pdo.hpp"
 #include "wavebench/canopen/sdo_abort.hpp"
 
@@ -142,8 +142,7 @@ void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels) {
   using canopen::PdoDirection;
   std::error_code ec;
   canopen::configure_pdo(sdo, PdoDirection::transmit, 2,
-                         SampleAssembler::drive_velocity_pdo(sdo.node(), channels.following_error),
-                         ec);
+                         Cia402DriveDevice::velocity_pdo(sdo.node(), channels.following_error), ec);
   if (ec && channels.following_error &&
       (object_missing(ec) || ec == make_error_code(SdoAbort::not_mappable))) {
     channels.following_error = false;
@@ -151,7 +150,7 @@ void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels) {
         {kFollowingErrorChannel,
          abort_reason(0x60F4, "following error actual value", ec) + " when mapped into TPDO2"});
     canopen::configure_pdo(sdo, PdoDirection::transmit, 2,
-                           SampleAssembler::drive_velocity_pdo(sdo.node(), false), ec);
+                           Cia402DriveDevice::velocity_pdo(sdo.node(), false), ec);
   }
   if (ec) throw std::system_error(ec, "TPDO2 of node " + std::to_string(sdo.node()));
 }

@@ -218,7 +218,7 @@ ApiResponse DaemonApi::status() const {
   const auto s = bench_.status();
   nlohmann::json j;
   j["state"] = daemon_state_name(s.state);
-  j["lifecycle"] = bench_lifecycle_text(s.lifecycle);
+  j["lifecycle"] = bench::lifecycle_name(s.lifecycle);
   j["bench"] = s.description ? description_json(*s.description) : nlohmann::json(nullptr);
   j["fault_reason"] =
       s.fault_reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.fault_reason);

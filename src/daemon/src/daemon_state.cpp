@@ -22,22 +22,11 @@ DaemonState daemon_state_of(bench::BenchLifecycle lifecycle, bool run_active) {
       return DaemonState::kFault;
     case bench::BenchLifecycle::kUnconfigured:
       return DaemonState::kIdle;
-    case bench::BenchLifecycle::kReady:
+    case bench::BenchLifecycle::kInactive:
+    case bench::BenchLifecycle::kActive:
       break;
   }
   return run_active ? DaemonState::kRunning : DaemonState::kReady;
-}
-
-const char* bench_lifecycle_text(bench::BenchLifecycle lifecycle) {
-  switch (lifecycle) {
-    case bench::BenchLifecycle::kUnconfigured:
-      return "unconfigured";
-    case bench::BenchLifecycle::kReady:
-      return "ready";
-    case bench::BenchLifecycle::kFault:
-      return "fault";
-  }
-  return "?";
 }
 
 }  // namespace wavebench::daemon

@@ -35,13 +35,11 @@
 #include <vector>
 
 #include "wavebench/bench/bench_description.hpp"
+#include "wavebench/bench/bench_lifecycle.hpp"
 #include "wavebench/storage/channel_info.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::bench {
-
-enum class BenchLifecycle { kUnconfigured, kReady, kFault };
-const char* lifecycle_name(BenchLifecycle state);
 
 // Thrown by a blocking call when the bench has tripped; what() is the reason.
 class BenchAborted : public std::runtime_error {
@@ -96,7 +94,7 @@ class Bench {
 
   // Boots the nodes (NMT), configures PDOs by SDO, arms heartbeat consumers, starts SYNC and
   // acquisition, connects the brake (output off) and leaves the drive disabled (Switch On
-  // Disabled): kUnconfigured -> kReady, inactive. Throws std::runtime_error naming the device
+  // Disabled): kUnconfigured -> kInactive. Throws std::runtime_error naming the device
   // and what failed.
   virtual void connect() = 0;
   // A clean exit: brake output off, the brake controller's watchdog switched off (so a real
@@ -105,16 +103,16 @@ class Bench {
   virtual void disconnect() noexcept = 0;
   virtual BenchLifecycle state() const noexcept = 0;
   virtual std::string fault_reason() const = 0;
-  // kFault -> kReady, inactive: brake alarm reset (output off), drive fault reset to Switch On
+  // kFault -> kInactive: brake alarm reset (output off), drive fault reset to Switch On
   // Disabled (never enabled here). Throws when the cause persists (e.g. heartbeat still
   // missing).
   virtual void clear_fault() = 0;
-  // Enables the drive (Operation Enabled) for motion; motion commands call it on their own.
-  // Throws like a motion command. (Added; the default does nothing.)
+  // kInactive -> kActive: enables the drive (Operation Enabled) for motion; motion commands and
+  // a brake torque above 0 call it on their own. Throws like a motion command.
   virtual void activate() {}
-  // Brake output off, drive power stage off (Ready To Switch On; Switch On Disabled after a
-  // trip, a drive in fault left in fault), the bench still connected and acquiring. Never
-  // throws. (Added; the default does nothing.)
+  // kActive -> kInactive: brake output off, drive power stage off (Ready To Switch On; Switch
+  // On Disabled after a trip, a drive in fault left in fault), the bench still connected and
+  // acquiring. Never throws.
   virtual void deactivate() noexcept {}
 
   // Profile-position move of the input (motor) shaft to an absolute angle [rad, unwrapped],

@@ -1,11 +1,9 @@
 #pragma once
-// A CANopen device the bench records beside the drive, the output encoder and the torque
-// sensor: an input-side CiA 406 encoder (seed 004's bench), a second torque sensor. One driver
-// object per node, after lely-core's per-node drivers: it configures its node (reads what it
-// needs, maps its TPDO) and is called on boot, heartbeat and EMCY; and after ros2_control's
-// state interfaces it exports one named channel, which lands in SyncSample::extra and the
-// sample log. A bench config lists these under `devices:`; a new kind of device is one file
-// and one line in channel_device_registry.cpp.
+// The CANopen devices a bench config adds under `devices:` (an input-side CiA 406 encoder as in
+// seed 004's bench, a second torque sensor), each recorded as one extra channel of the sample
+// and the sample log. Each is a CanopenDevice (bench_device.hpp) made by the registry below; a
+// new kind is one file (device_<kind>.cpp) and one line in device_kind_registry.cpp. The core
+// output encoder and torque sensor are devices of the same kinds.
 
 #include <cstdint>
 #include <functional>
@@ -14,16 +12,12 @@
 #include <string>
 #include <vector>
 
-#include "wavebench/can/frame.hpp"
-#include "wavebench/canopen/emcy.hpp"
-#include "wavebench/canopen/pdo.hpp"
-#include "wavebench/canopen/sdo_client.hpp"
+#include "wavebench/bench/bench_device.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
-#include "wavebench/storage/channel_info.hpp"
 
 namespace wavebench::bench {
 
-// One entry of the bench config's `devices:` (see configs/benches/README.md).
+// One entry of the bench config's `devices:` (see configs/benches/README.md), or a core device.
 struct ChannelDeviceSettings {
   std::string channel;  // the key under devices: and the channel's name
   std::string kind;     // a key of the registry: cia406_encoder, torque_sensor
@@ -36,46 +30,22 @@ struct ChannelDeviceSettings {
   canopen::TorqueSensorConfig torque{0x6130, 1, canopen::ValueType::i32, 1e-3, 0.0};
 };
 
-class ChannelDevice {
- public:
-  explicit ChannelDevice(ChannelDeviceSettings settings) : settings_(std::move(settings)) {}
-  virtual ~ChannelDevice() = default;
-  ChannelDevice(const ChannelDevice&) = delete;
-  ChannelDevice& operator=(const ChannelDevice&) = delete;
-
-  const ChannelDeviceSettings& settings() const noexcept { return settings_; }
-  std::uint8_t node() const noexcept { return settings_.node; }
-  // For messages: "input encoder 'theta_in_encoder' (node 5)".
-  std::string describe() const;
-
-  virtual storage::ChannelInfo channel() const = 0;
-  // Configuration hook, by SDO while the node is pre-operational: reads what the device needs.
-  // Throws naming the object.
-  virtual void configure(canopen::SdoClient& sdo) = 0;
-  // The synchronous TPDO the bench maps on the node (TPDO1, every SYNC).
-  virtual canopen::PdoConfig tpdo() const = 0;
-  // Its TPDO of the open cycle: the channel's value [SI], or nullopt when the frame does not
-  // match the mapping.
-  virtual std::optional<double> on_pdo(const can::Frame& frame) noexcept = 0;
-  // Hooks of the node's life; the bench trips on EMCY and a lost heartbeat itself.
-  virtual void on_boot() noexcept {}
-  virtual void on_heartbeat(std::uint8_t nmt_state) noexcept { (void)nmt_state; }
-  virtual void on_emcy(const canopen::Emergency& emcy) noexcept { (void)emcy; }
-
- private:
-  ChannelDeviceSettings settings_;
-};
-
 struct ChannelDeviceKind {
   std::string kind;
   std::string description;
   // The keys its settings may have beside kind, node and sign (for the config's key check).
   std::vector<std::string> keys;
-  std::function<std::unique_ptr<ChannelDevice>(const ChannelDeviceSettings&)> make;
+  // `name` is the device's name in messages ("output encoder"; for `devices:` entries
+  // "<kind> '<channel>'").
+  std::function<std::unique_ptr<CanopenDevice>(std::string name, const ChannelDeviceSettings&)>
+      make;
 };
 
 // Every kind of channel device, by name.
 const std::vector<ChannelDeviceKind>& channel_device_kinds();
 const ChannelDeviceKind* find_channel_device_kind(const std::string& kind);
+// A `devices:` entry's device, named "<kind> '<channel>'". Throws std::invalid_argument for an
+// unknown kind.
+std::unique_ptr<CanopenDevice> make_channel_device(const ChannelDeviceSettings& settings);
 
 }  // namespace wavebench::bench

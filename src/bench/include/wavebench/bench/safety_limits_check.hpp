@@ -9,7 +9,7 @@
 #include <string>
 
 #include "wavebench/bench/bench_description.hpp"
-#include "wavebench/bench/sample_assembler.hpp"
+#include "wavebench/bench/cycle_record.hpp"
 #include "wavebench/model/gear_sense.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 

@@ -16,8 +16,5 @@ enum class DaemonState {
 const char* daemon_state_name(DaemonState state);
 // A tripped bench shows kFault even while its run is still winding down.
 DaemonState daemon_state_of(bench::BenchLifecycle lifecycle, bool run_active);
-// Text of a lifecycle value for the API (kept here so the daemon does not depend on the
-// bench library for a name).
-const char* bench_lifecycle_text(bench::BenchLifecycle lifecycle);
 
 }  // namespace wavebench::daemon

@@ -1,0 +1,94 @@
+#include "wavebench/bench/cycle_clock.hpp"
+
+#include "wavebench/canopen/sync_producer.hpp"
+
+namespace wavebench::bench {
+
+double CycleClock::real_elapsed() const noexcept {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+}
+
+// --- real ---------------------------------------------------------------------------------
+
+RealSyncClock::RealSyncClock(canopen::Master& master, std::chrono::microseconds period)
+    : master_(master), period_(period) {}
+
+void RealSyncClock::start(SyncHandler on_sync) {
+  running_ = true;
+  auto& producer = master_.start_sync(period_);
+  producer.on_tick([this, on_sync = std::move(on_sync)](const canopen::SyncProducer::Tick& tick) {
+    if (!running_) return;
+    if (tick_hook_) tick_hook_(tick);
+    // The SYNC's send time on the clock of receive timestamps.
+    sync_sent_wall_ = std::chrono::system_clock::now() -
+                      std::chrono::duration_cast<std::chrono::system_clock::duration>(
+                          std::chrono::steady_clock::now() - tick.sent);
+    on_sync(tick.index,
+            std::chrono::duration_cast<std::chrono::nanoseconds>(tick.sent - t0_).count());
+  });
+}
+
+void RealSyncClock::stop() noexcept {
+  running_ = false;
+  master_.stop_sync();
+}
+
+bool RealSyncClock::received_after_sync(const can::Frame& frame) const noexcept {
+  return frame.timestamp.time_since_epoch().count() == 0 || frame.timestamp >= sync_sent_wall_;
+}
+
+CycleClock::Statistics RealSyncClock::statistics() const noexcept {
+  Statistics s;
+  if (const auto* producer = master_.sync()) {
+    s.late = producer->statistics().late;
+    s.skipped = producer->statistics().skipped;
+  }
+  return s;
+}
+
+// --- simulated ----------------------------------------------------------------------------
+
+SimulatedSyncClock::SimulatedSyncClock(can::CanBus& bus, double period_s,
+                                       std::chrono::milliseconds cycle_timeout)
+    : bus_(bus), period_s_(period_s), cycle_timeout_(cycle_timeout), timer_(bus.context()) {}
+
+SimulatedSyncClock::~SimulatedSyncClock() {
+  *alive_ = false;
+  stop();
+}
+
+void SimulatedSyncClock::reset() noexcept {
+  t0_ = std::chrono::steady_clock::now();
+  index_ = 0;
+}
+
+void SimulatedSyncClock::start(SyncHandler on_sync) {
+  on_sync_ = std::move(on_sync);
+  running_ = true;
+  send_sync();
+}
+
+void SimulatedSyncClock::stop() noexcept {
+  running_ = false;
+  ++generation_;
+  timer_.cancel();
+}
+
+void SimulatedSyncClock::send_sync() noexcept {
+  if (!running_) return;
+  const auto next = index_ + 1;
+  // The handler closes the open cycle first, at its own bench time.
+  on_sync_(next, std::llround(static_cast<double>(next) * period_s_ * 1e9));
+  index_ = next;
+  std::error_code ec;
+  bus_.send(canopen::sync_frame(), ec);
+  const auto generation = ++generation_;
+  timer_.expires_after(cycle_timeout_);
+  timer_.async_wait([this, generation, alive = alive_](const boost::system::error_code& e) {
+    if (e || !*alive || generation != generation_ || !running_) return;
+    ++timed_out_;
+    send_sync();
+  });
+}
+
+}  // namespace wavebench::bench
