@@ -136,6 +136,20 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   } while (std::chrono::steady_clock::now() < deadline &&
            (status["acquisition"].is_null() || status["acquisition"]["brake_output_on"].is_null()));
   EXPECT_EQ(status["lifecycle"], "inactive") << status.dump();
+  // Its devices with their state and command interfaces, in configuration order.
+  const auto& devices = status["devices"];
+  ASSERT_EQ(devices.size(), 4U) << status.dump();
+  EXPECT_EQ(devices[0]["name"], "servo drive");
+  EXPECT_EQ(devices[0]["node"], 1);
+  EXPECT_EQ(devices[0]["channels"][0]["name"], "theta_in");
+  EXPECT_EQ(devices[0]["commands"][1]["name"], "input_velocity");
+  EXPECT_EQ(devices[0]["commands"][1]["unit"], "rad/s");
+  EXPECT_EQ(devices[1]["name"], "output encoder");
+  EXPECT_EQ(devices[1]["channels"][0]["name"], "theta_out");
+  EXPECT_EQ(devices[2]["channels"][0]["name"], "torque");
+  EXPECT_EQ(devices[3]["name"], "brake controller");
+  EXPECT_TRUE(devices[3]["node"].is_null());
+  EXPECT_EQ(devices[3]["channels"][1]["name"], "brake_torque");
   EXPECT_TRUE(status["run"].is_null());
   const auto& acquisition = status["acquisition"];
   ASSERT_TRUE(acquisition["drive_statusword"].is_number()) << status.dump();

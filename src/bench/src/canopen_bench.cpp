@@ -114,6 +114,18 @@ std::vector<storage::ChannelInfo> CanopenBench::extra_channels() const {
   return channels;
 }
 
+std::vector<BenchDeviceInfo> CanopenBench::device_info() const {
+  std::vector<BenchDeviceInfo> out;
+  auto describe = [](const BenchDevice& d, std::optional<std::uint8_t> node) {
+    BenchDeviceInfo info{d.name(), node, d.channels(), {}};
+    for (const auto& c : d.commands()) info.commands.push_back({c.name, c.unit});
+    return info;
+  };
+  for (auto* d : canopen_devices()) out.push_back(describe(*d, d->node()));
+  out.push_back(describe(*brake_, std::nullopt));
+  return out;
+}
+
 std::string CanopenBench::fault_reason() const {
   std::lock_guard lock(reason_mutex_);
   return reason_;

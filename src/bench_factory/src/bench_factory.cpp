@@ -23,6 +23,7 @@ class ForwardingBench : public Bench {
   std::vector<storage::ChannelInfo> extra_channels() const override {
     return inner_->extra_channels();
   }
+  std::vector<BenchDeviceInfo> device_info() const override { return inner_->device_info(); }
   void connect() override { inner_->connect(); }
   void disconnect() noexcept override { inner_->disconnect(); }
   BenchLifecycle state() const noexcept override { return inner_->state(); }

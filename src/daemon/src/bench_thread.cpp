@@ -77,6 +77,7 @@ void BenchThread::start() {
       bench_ = bench.get();
       description_ = bench->description();
       extra_channels_ = bench->extra_channels();
+      devices_ = bench->device_info();
     }
     if (!description_->simulated_clock) {
       // SYNC from user space wakes late on an ordinary kernel (bench.md §1): ask for real-time
@@ -387,6 +388,7 @@ BenchStatus BenchThread::status() const {
   BenchStatus s;
   s.description = description_;
   s.extra_channels = extra_channels_;
+  s.devices = devices_;
   s.connect_error = connect_error_;
   s.run = run_;
   s.last_run = last_run_;

@@ -220,6 +220,18 @@ ApiResponse DaemonApi::status() const {
   j["state"] = daemon_state_name(s.state);
   j["lifecycle"] = bench::lifecycle_name(s.lifecycle);
   j["bench"] = s.description ? description_json(*s.description) : nlohmann::json(nullptr);
+  j["devices"] = nlohmann::json::array();
+  auto named = [](const std::vector<storage::ChannelInfo>& list) {
+    nlohmann::json out = nlohmann::json::array();
+    for (const auto& c : list) out.push_back({{"name", c.name}, {"unit", c.unit}});
+    return out;
+  };
+  for (const auto& d : s.devices) {
+    j["devices"].push_back({{"name", d.name},
+                            {"node", d.node ? nlohmann::json(*d.node) : nlohmann::json(nullptr)},
+                            {"channels", named(d.channels)},
+                            {"commands", named(d.commands)}});
+  }
   j["fault_reason"] =
       s.fault_reason.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.fault_reason);
   j["connect_error"] =

@@ -81,6 +81,16 @@ struct AcquisitionStats {
   std::optional<bool> brake_output_on;
 };
 
+// A device of the bench as the API lists it: its name, its CANopen node (none for the Modbus
+// brake), the channels it writes (state interfaces) and the set-points it takes (command
+// interfaces).
+struct BenchDeviceInfo {
+  std::string name;
+  std::optional<std::uint8_t> node;
+  std::vector<storage::ChannelInfo> channels;
+  std::vector<storage::ChannelInfo> commands;
+};
+
 class Bench {
  public:
   Bench() = default;
@@ -91,6 +101,8 @@ class Bench {
   virtual const BenchDescription& description() const noexcept = 0;
   // The channels beyond the six core ones, in SyncSample::extra order (the config's devices).
   virtual std::vector<storage::ChannelInfo> extra_channels() const { return {}; }
+  // Its devices, in the order the bench configures them. (The default: none described.)
+  virtual std::vector<BenchDeviceInfo> device_info() const { return {}; }
 
   // Boots the nodes (NMT), configures PDOs by SDO, arms heartbeat consumers, starts SYNC and
   // acquisition, connects the brake (output off) and leaves the drive disabled (Switch On

@@ -47,6 +47,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
 
   const BenchDescription& description() const noexcept override { return config_.description; }
   std::vector<storage::ChannelInfo> extra_channels() const override;
+  std::vector<BenchDeviceInfo> device_info() const override;
   void connect() override;
   void disconnect() noexcept override;
   BenchLifecycle state() const noexcept override { return lifecycle_.load(); }

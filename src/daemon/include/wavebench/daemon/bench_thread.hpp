@@ -61,6 +61,7 @@ struct BenchStatus {
   std::string connect_error;  // why the bench is idle, when connecting failed
   std::optional<bench::BenchDescription> description;
   std::vector<storage::ChannelInfo> extra_channels;  // the bench's, in SyncSample::extra order
+  std::vector<bench::BenchDeviceInfo> devices;
   std::optional<ActiveRun> run;
   std::optional<FinishedRun> last_run;
   std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
@@ -147,6 +148,7 @@ class BenchThread {
   bench::Bench* bench_ = nullptr;  // set and cleared under mutex_; used only on the bench thread
   std::optional<bench::BenchDescription> description_;
   std::vector<storage::ChannelInfo> extra_channels_;
+  std::vector<bench::BenchDeviceInfo> devices_;
   std::string connect_error_;
   std::optional<ActiveRun> run_;
   bool run_queued_ = false;
