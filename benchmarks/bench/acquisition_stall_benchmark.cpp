@@ -15,7 +15,7 @@
 // Acceptance: 0 samples lost; the median pair ratio and the pooled ratio both <= 1.5. 50 ms a
 // second touches about 0.1 % of the SYNCs, so p99 hardly moves even on the bench thread: the
 // periods skipped and the max are the figures that show a stall reaching the bench thread.
-// Usage: acquisition_stall_benchmark [SECONDS=20] [CONFIG=sim] [PAIRS=5] [--smoke]
+// Usage: acquisition_stall_benchmark [SECONDS=20] [CONFIG=sim] [PAIRS=10] [--smoke]
 //   SECONDS: of each kind (plain, stalled), split over PAIRS rounds of each (2 s at least).
 //   --smoke: exit 1 unless no sample was lost (counts only; for ctest, no timing verdict).
 #include <unistd.h>
@@ -100,8 +100,11 @@ class StallRounds {
       const int r = recording_.load(std::memory_order_acquire);
       if (r < 0) return;
       const double late = std::chrono::duration<double>(tick.sent - tick.deadline).count();
-      rounds_[static_cast<std::size_t>(r)].lateness.add(late);
-      (rounds_[static_cast<std::size_t>(r)].stalled ? pooled_stalled_ : pooled_plain_).add(late);
+      RoundFigures& round = rounds_[static_cast<std::size_t>(r)];
+      round.lateness.add(late);
+      if (round.log_path == LogPath::writer_thread) {
+        (round.stalled ? pooled_stalled_ : pooled_plain_).add(late);
+      }
     });
     bench_->connect();
     connected_ = true;
@@ -228,12 +231,12 @@ int main(int argc, char** argv) {
   }
   const double seconds = !args.empty() ? std::atof(args[0].c_str()) : 20.0;
   auto config = bench::bench_config_from_argument(args.size() > 1 ? args[1] : "sim");
-  const int pairs_asked = args.size() > 2 ? std::atoi(args[2].c_str()) : 5;
+  const int pairs_asked = args.size() > 2 ? std::atoi(args[2].c_str()) : 10;
   if (!(seconds >= 2) || pairs_asked < 1) {
     std::fprintf(stderr, "usage: acquisition_stall_benchmark [SECONDS>=2] [CONFIG] [PAIRS>=1]\n");
     return 2;
   }
-  // A round of 2 s at least: the first stall comes 1 s after a round arms it.
+  // A round of 2 s at least: two stalls (at arming and 1 s later) in every stalled round.
   const auto pairs = static_cast<std::size_t>(
       std::clamp(pairs_asked, 1, std::max(1, static_cast<int>(seconds / 2))));
   const double round_s = seconds / static_cast<double>(pairs);
