@@ -25,8 +25,8 @@ bench::BenchConfig two_extra_channel_config() {
   std::stringstream text;
   text << in.rdbuf();
   std::string yaml = text.str();
-  const std::string anchor = "devices:";
-  const auto at = yaml.find('\n', yaml.find(anchor));
+  const std::string anchor = "\ndevices:";
+  const auto at = yaml.find('\n', yaml.find(anchor) + 1);
   yaml.insert(at + 1,
               "  theta_out_encoder:\n    kind: cia406_encoder\n    node: 6\n"
               "    counts_per_turn: 1048576\n    turns: 1\n");
