@@ -283,7 +283,11 @@ int main(int argc, char** argv) {
   const double pooled_plain = rounds.pooled(false).percentile(0.99);
   const double pooled_stalled = rounds.pooled(true).percentile(0.99);
   const double pooled_ratio = pooled_plain > 0 ? pooled_stalled / pooled_plain : 0;
-  std::printf("; median %.2f\n", median_ratio);
+  // How often the stalled round of a pair was the worse one: near half when the stalls add
+  // nothing, near all when they add a little that the load's noise hides in every ratio.
+  const auto worse = std::count_if(ratios.begin(), ratios.end(), [](double r) { return r > 1; });
+  std::printf("; median %.2f; stalled worse in %td of %zu pairs\n", median_ratio, worse,
+              ratios.size());
   for (const bool stalled : {false, true}) {
     const auto& h = rounds.pooled(stalled);
     std::printf(
