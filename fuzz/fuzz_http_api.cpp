@@ -35,8 +35,8 @@ class CheckOnlyLauncher : public daemon::RunLauncher {
     throw std::invalid_argument("fuzz: runs are checked, never launched");
   }
   void check(const runs::RunRequest& request, const bench::BenchDescription& /*fake*/,
-             const std::filesystem::path& runs_root) const override {
-    runs::check_run_request(request, simulated_, runs_root);
+             std::size_t extra_channels, const std::filesystem::path& runs_root) const override {
+    runs::check_run_request(request, simulated_, extra_channels, runs_root);
   }
 
  private:

@@ -57,7 +57,8 @@ DiskStall::DiskStall(const std::filesystem::path& path, std::chrono::millisecond
   armed_inode = st.st_ino;
   stall_ns = std::chrono::nanoseconds(stall).count();
   period_ns = std::chrono::nanoseconds(period).count();
-  next_stall_ns = steady_ns() + period_ns.load();
+  // The first write after arming stalls: a short round gets its stall a second like a long one.
+  next_stall_ns = steady_ns();
   armed.store(true, std::memory_order_release);
 }
 

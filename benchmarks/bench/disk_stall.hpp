@@ -1,7 +1,8 @@
 #pragma once
 // A slow disk for the sample log, injected from outside the production code: write(2) and
 // fdatasync(2) are interposed in the benchmark's executable (disk_stall.cpp), and once per
-// period the first of them on the armed file sleeps `stall` before doing its work.
+// period the first of them on the armed file sleeps `stall` before doing its work, starting
+// with the first one after arming.
 
 #include <chrono>
 #include <cstdint>

@@ -111,7 +111,7 @@ int main(int argc, char** argv) {
                             const runs::ProgressSink&) override {
       throw std::invalid_argument("this benchmark starts no runs");
     }
-    void check(const runs::RunRequest&, const bench::BenchDescription&,
+    void check(const runs::RunRequest&, const bench::BenchDescription&, std::size_t,
                const fs::path&) const override {}
   };
   setup.launcher = std::make_unique<NoRuns>();

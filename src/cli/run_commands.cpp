@@ -141,7 +141,7 @@ int run_procedure(const RunArgs& a) {
     config = bench::bench_config_from_argument(a.bench);
     // The whole request against this bench and the runs folder, before anything is created
     // or moves: ranges, the bench's safety limits, duration and disk (issue #8).
-    runs::check_run_request(request, config.description, a.out);
+    runs::check_run_request(request, config.description, config.devices.size(), a.out);
   } catch (const config::ConfigError& e) {
     std::cerr << "wavebench run: " << e.what() << "\n";
     return 2;

@@ -137,7 +137,7 @@ input:
   voltage: {amplitude: "24 V", frequency: "50 Hz"}
 load:
   output_torque: {offset: "10 N*m", amplitude: "2 N*m", frequency: "5 Hz"}
-  brake: {torque_per_amp: "20 N*m/A", rated_current: "2 A", current: "500 mA"}
+  brake: {rated_torque: "40 N*m", rated_current: "2 A", current: "500 mA", hysteresis: "40 mA"}
 solver: {method: rosenbrock, t_end: "250 ms", sample_rate: "20 kHz", rtol: 1e-8}
 analysis:
   spectrum: {signal: omega2, window: flattop, max_frequency: "2 kHz"}
@@ -155,7 +155,11 @@ analysis:
   EXPECT_DOUBLE_EQ(f.static_torque, 0.05);  // defaults to Coulomb
   EXPECT_EQ(c.gear.load.output_torque.offset, 10.0);
   ASSERT_TRUE(c.gear.load.brake.has_value());
-  EXPECT_DOUBLE_EQ(c.gear.load.brake->current_setpoint, 0.5);
+  EXPECT_DOUBLE_EQ(c.gear.load.brake_current_a, 0.5);
+  EXPECT_DOUBLE_EQ(c.gear.load.brake->rated_torque_nm, 40.0);
+  EXPECT_DOUBLE_EQ(c.gear.load.brake->hysteresis_a, 0.04);
+  EXPECT_DOUBLE_EQ(c.gear.load.brake->tau_fall_s, c.gear.load.brake->tau_rise_s);
+  EXPECT_EQ(c.gear.load.brake->heat_capacity_j_per_k, 0.0);  // no thermal model unless given
   EXPECT_EQ(c.solver.method, model::SolverMethod::kRosenbrock4);
   EXPECT_DOUBLE_EQ(c.solver.t_end, 0.25);
   EXPECT_EQ(c.solver.sample_rate, 20000.0);
@@ -166,6 +170,26 @@ analysis:
   EXPECT_DOUBLE_EQ(c.analysis.sweep.from_speed, 100 * 2 * kPi / 60);
   EXPECT_DOUBLE_EQ(c.analysis.sweep.to_speed, 2700 * 2 * kPi / 60);
   EXPECT_EQ(c.gear.nominal_input_speed, 0.0);
+}
+
+TEST(TwinCaseSchema, OldBrakeKeysAreRefusedNamingTheirReplacement) {
+  const auto refused = [](const std::string& brake) -> std::string {
+    try {
+      parse_with("stiffness: {form: cubic, k1: 1}\nload:\n  brake: " + brake + "\n");
+    } catch (const ConfigError& e) {
+      return e.what();
+    }
+    return "accepted";
+  };
+  const std::string m =
+      refused(R"({torque_per_amp: "20 N*m/A", rated_current: "2 A", current: "500 mA"})");
+  EXPECT_NE(m.find("load.brake.torque_per_amp"), std::string::npos) << m;
+  EXPECT_NE(m.find("rated_torque"), std::string::npos) << m;
+  const std::string f = refused(R"({rated_torque: 40, rated_current: 2, falling_ratio: 0.9})");
+  EXPECT_NE(f.find("load.brake.falling_ratio"), std::string::npos) << f;
+  EXPECT_NE(f.find("hysteresis"), std::string::npos) << f;
+  const std::string t = refused(R"({rated_torque: 40, rated_current: 2, tau_rise: 0})");
+  EXPECT_NE(t.find("load.brake.tau_rise"), std::string::npos) << t;
 }
 
 TEST(TwinCaseSchema, DampingRatioAndCoefficientTogetherIsAnError) {

@@ -28,7 +28,7 @@ class FakeRunLauncher : public RunLauncher {
   runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
                           const runs::RunRequest& request,
                           const runs::ProgressSink& progress) override {
-    check(request, bench.description(), store.root());
+    check(request, bench.description(), bench.extra_channels().size(), store.root());
     const double seconds = request.options.value("seconds", 0.2);
     runs::RunOutcome outcome;
     outcome.run_id =
@@ -66,6 +66,7 @@ class FakeRunLauncher : public RunLauncher {
   }
 
   void check(const runs::RunRequest& request, const bench::BenchDescription& /*bench*/,
+             std::size_t /*extra_channels*/,
              const std::filesystem::path& /*runs_root*/) const override {
     if (request.procedure != "static" && request.procedure != "dynamic" &&
         request.procedure != "lost-motion") {

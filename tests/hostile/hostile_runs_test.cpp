@@ -162,7 +162,7 @@ TEST_F(HostileRuns, AStartTooBigForTheFreeDiskIsRefusedNamingTheEstimateAndTheFr
   budget.runs_root = dir_;
   budget.free_disk_bytes = 8ull << 20;
   try {
-    check_run_request(request, description, budget);
+    check_run_request(request, description, 0, budget);
     FAIL() << "accepted on 8 MiB free";
   } catch (const std::invalid_argument& e) {
     const std::string m = e.what();
@@ -171,7 +171,7 @@ TEST_F(HostileRuns, AStartTooBigForTheFreeDiskIsRefusedNamingTheEstimateAndTheFr
     EXPECT_NE(m.find(dir_.string()), std::string::npos) << m;
   }
   budget.free_disk_bytes = 10ull << 30;
-  const auto e = check_run_request(request, description, budget);
+  const auto e = check_run_request(request, description, 0, budget);
   std::printf("static defaults: estimated %.0f s of bench time, %llu samples, %.1f MiB\n",
               e.bench_time_s, static_cast<unsigned long long>(e.samples),
               static_cast<double>(e.disk_bytes()) / (1 << 20));

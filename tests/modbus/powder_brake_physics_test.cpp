@@ -94,7 +94,7 @@ TEST(PowderBrakePhysics, HoldsUpToCapacityWhenStoppedAndSlipsWhenTurning) {
 }
 
 TEST(PowderBrakePhysics, SlipPowerHeatsLumpedThermalMass) {
-  PowderBrakeParams p;
+  model::PowderBrakeParams p;
   PowderBrakePhysics b(p);
   b.set_coil_current(1.0);
   settle(b);  // at standstill: no heating

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
 
 #include "gear_test_support.hpp"
 #include "wavebench/model/powder_brake.hpp"
@@ -129,51 +130,76 @@ TEST(KinematicInput, RampAndTraceAreFollowed) {
   }
 }
 
-TEST(PowderBrake, CapacityFollowsTheLagAndTheCurves) {
+// k = 20 N*m / 2 A = 10 N*m/A above 0.1 A; the falling curve 0.2 A to the left; no thermal mass.
+PowderBrakeParams test_brake() {
   PowderBrakeParams b;
-  b.torque_per_amp = 10;
-  b.threshold_current = 0.1;
-  b.rated_current = 2;
-  b.time_constant = 0.05;
-  b.falling_ratio = 1.2;
-  b.current_setpoint = 1.0;
-  const PowderBrake brake(b);
-  EXPECT_DOUBLE_EQ(brake.rising_curve(1.0), 9.0);
-  EXPECT_DOUBLE_EQ(brake.rising_curve(0.05), 0.0);  // below the threshold
-  EXPECT_DOUBLE_EQ(brake.rising_curve(5.0), 19.0);  // saturates at the rated current
-  EXPECT_DOUBLE_EQ(brake.falling_curve(1.0), 10.8);
-  EXPECT_DOUBLE_EQ(brake.capacity_rate(0.0), 9.0 / 0.05);
-  EXPECT_DOUBLE_EQ(brake.capacity_rate(10.0), 0.0);  // inside the hysteresis band
-  EXPECT_NEAR(brake.capacity_rate(12.0), (10.8 - 12.0) / 0.05, 1e-9);
+  b.rated_current_a = 2;
+  b.rated_torque_nm = 20;
+  b.threshold_current_a = 0.1;
+  b.hysteresis_a = 0.2;
+  b.tau_rise_s = 0.05;
+  b.tau_fall_s = 0.08;
+  b.heat_capacity_j_per_k = 0;
+  return b;
+}
+
+TEST(PowderBrake, OneCharacteristicCurvesPlayOperatorAndLag) {
+  const PowderBrakeCharacteristic law(test_brake());
+  EXPECT_DOUBLE_EQ(law.static_torque(1.0), 10.0);   // T = k I
+  EXPECT_DOUBLE_EQ(law.static_torque(0.09), 0.0);   // below the threshold
+  EXPECT_DOUBLE_EQ(law.static_torque(0.1), 1.0);    // from the threshold on, k I
+  EXPECT_DOUBLE_EQ(law.static_torque(5.0), 20.0);   // saturates at the rated current
+  EXPECT_DOUBLE_EQ(law.falling_torque(1.0), 12.0);  // k (I + w)
+  // Play operator: up at once, down only past the play width.
+  EXPECT_DOUBLE_EQ(law.next_effective_current(0.0, 1.0), 1.0);
+  EXPECT_DOUBLE_EQ(law.next_effective_current(1.0, 0.9), 1.0);
+  EXPECT_DOUBLE_EQ(law.next_effective_current(1.0, 0.5), 0.7);
+  EXPECT_DOUBLE_EQ(law.lag_time_constant(10.0, 2.0), 0.05);
+  EXPECT_DOUBLE_EQ(law.lag_time_constant(2.0, 10.0), 0.08);
+  EXPECT_DOUBLE_EQ(law.current_for_torque(6.0), 0.6);
+  EXPECT_DOUBLE_EQ(law.current_for_torque_from(6.0, 1.0), 0.4);  // falling branch: T/k - w
+}
+
+TEST(PowderBrake, CapacityFollowsTheLagToTheStaticCurve) {
+  const PowderBrake brake(test_brake(), 1.0);
+  EXPECT_DOUBLE_EQ(brake.target_capacity(), 10.0);
+  EXPECT_DOUBLE_EQ(brake.capacity_rate(0.0), 10.0 / 0.05);  // rising time constant
+  EXPECT_DOUBLE_EQ(brake.capacity_rate(10.0), 0.0);
+  EXPECT_NEAR(brake.capacity_rate(12.0), (10.0 - 12.0) / 0.08, 1e-9);  // falling one
   EXPECT_NEAR(brake.torque(9.0, 1.0), 9.0, 1e-9);
   EXPECT_NEAR(brake.torque(9.0, -1.0), -9.0, 1e-9);
+  EXPECT_THROW(PowderBrake(test_brake(), -1.0), std::invalid_argument);
+  PowderBrakeParams bad = test_brake();
+  bad.tau_fall_s = 0;
+  EXPECT_THROW(PowderBrake(bad, 1.0), std::invalid_argument);
 
-  // In the model: switched on at t = 0, the brake torque rises as 9 (1 - e^(-t/T)).
+  // In the model: switched on at t = 0, the brake torque rises as 10 (1 - e^(-t/tau_rise)).
   GearParams p = testing::bare_gear(50, 1e-3, 0.2, 1e5);
   p.damping.damping_ratio = 0.3;
   p.input = KinematicInput{100, 0, {}, {}};
-  p.load.brake = b;
+  p.load.brake = test_brake();
+  p.load.brake_current_a = 1.0;
   SimulationOptions o;
   o.t_end = 0.2;
   o.sample_rate = 100;
   const SimulationResult r = simulate(p, o);
   for (std::size_t i = 0; i < r.response.t.size(); ++i) {
     const double t = r.response.t[i];
-    EXPECT_NEAR(r.response.load_torque[i], 9 * (1 - std::exp(-t / 0.05)), 1e-6) << t;
+    EXPECT_NEAR(r.response.load_torque[i], 10 * (1 - std::exp(-t / 0.05)), 1e-6) << t;
   }
 }
 
 TEST(PowderBrake, HoldsAStoppedOutputAndHeatsWithSlipPower) {
-  PowderBrakeParams b;
-  b.torque_per_amp = 10;
-  b.rated_current = 2;
-  b.current_setpoint = 0.9;
-  b.holding_speed = 1e-3;
-  // Free input, 3 N*m pulling on the output: without the brake it would run away.
+  PowderBrakeParams b = test_brake();
+  b.threshold_current_a = 0;
+  b.standstill_rad_per_s = 1e-3;
+  // Free input, 3 N*m pulling on the output: without the brake (9 N*m at 0.9 A) it would run
+  // away.
   GearParams p = testing::bare_gear(50, 1e-3, 0.2, 1e5);
   p.damping.damping_ratio = 0.3;
   p.load.output_torque.offset = -3;
   p.load.brake = b;
+  p.load.brake_current_a = 0.9;
   SimulationOptions o;
   o.t_end = 1.0;
   o.transient = 0.5;
@@ -181,10 +207,10 @@ TEST(PowderBrake, HoldsAStoppedOutputAndHeatsWithSlipPower) {
   const SimulationResult held = simulate(p, o);
   for (double w : held.response.omega2) EXPECT_LT(std::abs(w), 1e-3);
 
-  // Slipping at a constant speed heats the mass to ambient + P R_th.
-  b.thermal_capacity = 10;
-  b.thermal_resistance = 0.5;
-  b.ambient_temperature = 20;
+  // Slipping at a constant speed heats the mass to ambient + P / G.
+  b.heat_capacity_j_per_k = 10;
+  b.heat_loss_w_per_k = 2;
+  b.ambient_c = 20;
   p.load.brake = b;
   p.load.output_torque.offset = 0;
   p.input = KinematicInput{100, 0, {}, {}};
@@ -193,7 +219,7 @@ TEST(PowderBrake, HoldsAStoppedOutputAndHeatsWithSlipPower) {
   std::vector<double> y = model.initial_state();
   const testing::GearRun run = testing::run_gear(model, y, 60, 1, 1e-8, 1e-10);
   const double power = 9 * std::tanh(2 / 1e-3) * 2;  // 9 N*m at omega2 = 100/50
-  EXPECT_NEAR(run.y_end[L.brake_temperature], 20 + power * 0.5, 1e-3);
+  EXPECT_NEAR(run.y_end[L.brake_temperature], 20 + power / 2, 1e-3);
 }
 
 }  // namespace

@@ -105,13 +105,28 @@ TEST(TwinCaseWriter, KinematicTraceAndCustomOrdersRoundTrip) {
   k.trace_theta = {0, 0.0104, 0.021, 0.0333333333333333};
   c.gear.input = k;
   c.gear.te_terms.push_back({"encoder zero offset", model::TeFamily::kCustom, 1.3e-5, 0, 0, -1.5});
-  c.gear.load.brake = model::PowderBrakeParams{2.5, 0.05, 2.0, 0.05, 0.9, 1.0, 1e-3, 0, 0, 25};
+  model::PowderBrakeParams brake;
+  brake.rated_current_a = 2.0;
+  brake.rated_torque_nm = 5.0;
+  brake.threshold_current_a = 0.05;
+  brake.hysteresis_a = 0.07;
+  brake.tau_rise_s = 0.05;
+  brake.tau_fall_s = 0.09;
+  brake.heat_capacity_j_per_k = 40;
+  brake.heat_loss_w_per_k = 4;
+  c.gear.load.brake = brake;
+  c.gear.load.brake_current_a = 1.0;
   const TwinCase again = parse_twin_case(write_twin_case_yaml(c));
   expect_same(c, again);
   const auto& k2 = std::get<model::KinematicInput>(again.gear.input);
   ASSERT_EQ(k2.trace_theta.size(), 4u);
   EXPECT_DOUBLE_EQ(k2.trace_theta[3], k.trace_theta[3]);
-  EXPECT_DOUBLE_EQ(again.gear.load.brake->falling_ratio, 0.9);
+  const auto& b2 = *again.gear.load.brake;
+  EXPECT_DOUBLE_EQ(b2.rated_torque_nm, 5.0);
+  EXPECT_DOUBLE_EQ(b2.hysteresis_a, 0.07);
+  EXPECT_DOUBLE_EQ(b2.tau_fall_s, 0.09);
+  EXPECT_DOUBLE_EQ(b2.heat_loss_w_per_k, 4);
+  EXPECT_DOUBLE_EQ(again.gear.load.brake_current_a, 1.0);
 }
 
 }  // namespace

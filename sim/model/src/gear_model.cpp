@@ -78,7 +78,7 @@ GearModel::GearModel(const GearParams& params, bool locate_events)
   } else if (const auto* lg = std::get_if<LuGreFriction>(&params.friction)) {
     friction_ = LuGre(*lg);
   }
-  if (params.load.brake) brake_.emplace(*params.load.brake);
+  if (params.load.brake) brake_.emplace(*params.load.brake, params.load.brake_current_a);
   if (params.load.output_drag_coulomb != 0 && !(params.load.drag_smoothing_speed > 0)) {
     throw std::invalid_argument("load.drag_smoothing_speed = " +
                                 num(params.load.drag_smoothing_speed) + " rad/s: expected > 0");
@@ -391,7 +391,7 @@ std::vector<double> GearModel::initial_state() const {
   }
   y[L.twist] = q;
   y[L.twist_rate] = r;
-  if (L.brake_temperature >= 0) y[L.brake_temperature] = brake_->params().ambient_temperature;
+  if (L.brake_temperature >= 0) y[L.brake_temperature] = brake_->params().ambient_c;
   if (L.motor_current >= 0) {
     y[L.motor_current] = std::get<DcMotor>(drive_).algebraic_current(0.0, omega1);
   }

@@ -1,5 +1,6 @@
 // friction, input and load: what drives the gear and what it drives (model.md §2, §6, §7).
 #include <string>
+#include <utility>
 
 #include "twin_sections.hpp"
 #include "wavebench/config/config_error.hpp"
@@ -131,23 +132,48 @@ void parse_load_section(YamlSection& s, model::LoadParams& load) {
   load.drag_smoothing_speed =
       s.non_negative_quantity_or("drag_smoothing_speed", Dimension::kAngularSpeed, 1e-3);
   if (auto b = s.optional_section("brake")) {
-    model::PowderBrakeParams p;
-    p.torque_per_amp = b->positive_quantity("torque_per_amp", Dimension::kTorqueConstant);
-    p.threshold_current = b->non_negative_quantity_or("threshold_current", Dimension::kCurrent, 0);
-    p.rated_current = b->positive_quantity("rated_current", Dimension::kCurrent);
-    p.time_constant = b->non_negative_quantity_or("time_constant", Dimension::kTime, 0.05);
-    p.falling_ratio = b->quantity_or("falling_ratio", Dimension::kDimensionless, 1.0);
-    if (!(p.falling_ratio > 0 && p.falling_ratio <= 1.5)) {
-      b->fail("falling_ratio", b->value_text("falling_ratio"), "a ratio in (0, 1.5]");
+    // Keys of the brake description before it was one with the simulated bench's (issue #9):
+    // their meaning changed, so they are refused naming what replaced them.
+    static const std::pair<const char*, const char*> kReplaced[] = {
+        {"torque_per_amp",
+         "rated_torque (T = rated_torque * I / rated_current above "
+         "threshold_current)"},
+        {"falling_ratio", "hysteresis (a current: the falling curve is T(I + hysteresis))"},
+        {"time_constant", "tau_rise and tau_fall"},
+        {"holding_speed", "standstill_speed"},
+    };
+    for (const auto& [old_key, replacement] : kReplaced) {
+      if (b->has(old_key)) {
+        b->fail(old_key, b->value_text(old_key),
+                std::string("no longer a key: give ") + replacement);
+      }
     }
-    p.current_setpoint = b->non_negative_quantity_or("current", Dimension::kCurrent, 0.0);
-    p.holding_speed = b->non_negative_quantity_or("holding_speed", Dimension::kAngularSpeed, 1e-3);
-    p.thermal_capacity =
+    const auto positive_or = [&](const char* key, Dimension dimension, double fallback) {
+      const double v = b->non_negative_quantity_or(key, dimension, fallback);
+      if (!(v > 0)) b->fail(key, b->value_text(key), describe(dimension) + " > 0");
+      return v;
+    };
+    model::PowderBrakeParams p;
+    p.rated_current_a = b->positive_quantity("rated_current", Dimension::kCurrent);
+    p.rated_torque_nm = b->positive_quantity("rated_torque", Dimension::kTorque);
+    p.threshold_current_a =
+        b->non_negative_quantity_or("threshold_current", Dimension::kCurrent, 0);
+    p.hysteresis_a = b->non_negative_quantity_or("hysteresis", Dimension::kCurrent, 0);
+    p.tau_rise_s = positive_or("tau_rise", Dimension::kTime, 0.05);
+    p.tau_fall_s = positive_or("tau_fall", Dimension::kTime, p.tau_rise_s);
+    load.brake_current_a = b->non_negative_quantity_or("current", Dimension::kCurrent, 0.0);
+    p.standstill_rad_per_s = positive_or("standstill_speed", Dimension::kAngularSpeed, 1e-3);
+    p.heat_capacity_j_per_k =
         b->non_negative_quantity_or("thermal_capacity", Dimension::kHeatCapacity, 0);
-    p.thermal_resistance =
+    const double resistance =
         b->non_negative_quantity_or("thermal_resistance", Dimension::kThermalResistance, 0);
-    p.ambient_temperature = b->quantity_or("ambient_temperature", Dimension::kTemperature, 25.0);
-    if (p.rated_current <= p.threshold_current) {
+    if (p.heat_capacity_j_per_k > 0 && !(resistance > 0)) {
+      b->fail("thermal_resistance", b->value_text("thermal_resistance"),
+              "a thermal resistance > 0 K/W with a thermal_capacity");
+    }
+    p.heat_loss_w_per_k = resistance > 0 ? 1 / resistance : 0;
+    p.ambient_c = b->quantity_or("ambient_temperature", Dimension::kTemperature, 25.0);
+    if (p.rated_current_a <= p.threshold_current_a) {
       b->fail("rated_current", b->value_text("rated_current"),
               "a current above threshold_current " + b->value_text("threshold_current"));
     }

@@ -254,16 +254,20 @@ void load_section(YAML::Emitter& out, const model::LoadParams& l) {
   if (l.brake) {
     const auto& b = *l.brake;
     out << YAML::Key << "brake" << YAML::Value << YAML::BeginMap;
-    key_number(out, "torque_per_amp", b.torque_per_amp);
-    key_number(out, "threshold_current", b.threshold_current);
-    key_number(out, "rated_current", b.rated_current);
-    key_number(out, "time_constant", b.time_constant);
-    key_number(out, "falling_ratio", b.falling_ratio);
-    key_number(out, "current", b.current_setpoint);
-    key_number(out, "holding_speed", b.holding_speed);
-    key_number(out, "thermal_capacity", b.thermal_capacity);
-    key_number(out, "thermal_resistance", b.thermal_resistance);
-    key_number(out, "ambient_temperature", b.ambient_temperature);
+    key_number(out, "rated_current", b.rated_current_a);
+    key_number(out, "rated_torque", b.rated_torque_nm);
+    key_number(out, "threshold_current", b.threshold_current_a);
+    key_number(out, "hysteresis", b.hysteresis_a);
+    key_number(out, "tau_rise", b.tau_rise_s);
+    key_number(out, "tau_fall", b.tau_fall_s);
+    key_number(out, "current", l.brake_current_a);
+    key_number(out, "standstill_speed", b.standstill_rad_per_s);
+    key_number(out, "thermal_capacity", b.heat_capacity_j_per_k);
+    // The config's form of the heat loss (K/W); no thermal model without a capacity.
+    if (b.heat_capacity_j_per_k > 0 && b.heat_loss_w_per_k > 0) {
+      key_number(out, "thermal_resistance", 1 / b.heat_loss_w_per_k);
+    }
+    key_number(out, "ambient_temperature", b.ambient_c);
     out << YAML::EndMap;
   }
   out << YAML::EndMap;

@@ -305,14 +305,16 @@ StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milli
   job->request.config_text = config_text_;
   auto started = job->started.get_future();
   std::optional<bench::BenchDescription> description;
+  std::size_t extra_channels = 0;
   {
     std::lock_guard lock(mutex_);
     description = description_;
+    extra_channels = extra_channels_.size();
   }
   // Malformed before busy: a bad request is answered as such whatever the bench is doing.
   if (description) {
     try {
-      launcher_.check(job->request, *description, store_.root());
+      launcher_.check(job->request, *description, extra_channels, store_.root());
     } catch (const std::invalid_argument& e) {
       return {StartOutcome::Kind::kBadRequest, "", e.what()};
     }

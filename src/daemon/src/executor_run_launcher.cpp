@@ -13,8 +13,8 @@ class ExecutorRunLauncher : public RunLauncher {
     return runs::execute_run(bench, store, request, progress);
   }
   void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
-             const std::filesystem::path& runs_root) const override {
-    runs::check_run_request(request, bench, runs_root);
+             std::size_t extra_channels, const std::filesystem::path& runs_root) const override {
+    runs::check_run_request(request, bench, extra_channels, runs_root);
   }
 };
 

@@ -105,7 +105,8 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
                        const ProgressSink& progress) {
   const auto& description = bench.description();
   // Nothing on disk and nothing moved before the whole request passes.
-  ParsedRequest parsed = check_and_parse(request, description, run_budget(store.root()));
+  ParsedRequest parsed = check_and_parse(request, description, bench.extra_channels().size(),
+                                         run_budget(store.root()));
 
   RunOutcome outcome;
   outcome.run_id = store.create_run(request.procedure, description.unit_serial, request.config_text,

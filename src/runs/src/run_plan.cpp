@@ -28,14 +28,15 @@ double planned_ramp_s(double speed_rad_s) {
   return std::abs(speed_rad_s) / kNominalAccelerationRad_s2 + kMoveHandshakeS;
 }
 
-RunEstimate estimate_run(const RunPlan& plan, const bench::BenchDescription& bench, bool twin) {
+RunEstimate estimate_run(const RunPlan& plan, const bench::BenchDescription& bench,
+                         std::size_t extra_channels, bool twin) {
   RunEstimate e;
   e.bench_time_s = plan.bench_time_s;
   const double period = bench.sync_period_s > 0 ? bench.sync_period_s : 1e-3;
   // Clamped: an absurd request must still give a number to refuse, not an overflow.
   e.samples = static_cast<std::uint64_t>(std::ceil(std::min(plan.bench_time_s / period, 1e15)));
-  e.sample_log_bytes =
-      storage::sample_log_header_size(0) + e.samples * storage::kSampleLogRecordSize;
+  e.sample_log_bytes = storage::sample_log_header_size(extra_channels) +
+                       e.samples * storage::sample_log_record_size(extra_channels);
   e.twin_bytes = twin ? e.samples * kTwinCsvBytesPerSample : 0;
   e.other_bytes = kRunMarginBytes;
   return e;

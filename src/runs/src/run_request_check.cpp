@@ -96,7 +96,8 @@ RunBudget run_budget(const std::filesystem::path& runs_root) {
 }
 
 ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescription& bench,
-                              const RunBudget& budget, RunEstimate* estimate) {
+                              std::size_t extra_channels, const RunBudget& budget,
+                              RunEstimate* estimate) {
   ParsedRequest parsed = parse_request(request);
   const RunPlan plan = plan_of(parsed.procedure, bench);
   check_at_most(plan.brake_torques_nm,
@@ -106,7 +107,7 @@ ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescr
                 "the bench's input speed limit");
   if (!plan.refusal.empty()) throw std::invalid_argument(plan.refusal);
 
-  const RunEstimate e = estimate_run(plan, bench, request.twin);
+  const RunEstimate e = estimate_run(plan, bench, extra_channels, request.twin);
   if (!(e.bench_time_s <= budget.max_bench_time_s)) {
     throw std::invalid_argument(request.procedure + ": got " + plan.duration_terms +
                                 " = an estimated " + duration(e.bench_time_s) +
@@ -126,15 +127,15 @@ ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescr
 }
 
 RunEstimate check_run_request(const RunRequest& request, const bench::BenchDescription& bench,
-                              const RunBudget& budget) {
+                              std::size_t extra_channels, const RunBudget& budget) {
   RunEstimate e;
-  check_and_parse(request, bench, budget, &e);
+  check_and_parse(request, bench, extra_channels, budget, &e);
   return e;
 }
 
 RunEstimate check_run_request(const RunRequest& request, const bench::BenchDescription& bench,
-                              const std::filesystem::path& runs_root) {
-  return check_run_request(request, bench, run_budget(runs_root));
+                              std::size_t extra_channels, const std::filesystem::path& runs_root) {
+  return check_run_request(request, bench, extra_channels, run_budget(runs_root));
 }
 
 }  // namespace wavebench::runs

@@ -8,6 +8,7 @@ namespace wavebench::runs {
 
 // check_run_request that also hands back what it parsed.
 ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescription& bench,
-                              const RunBudget& budget, RunEstimate* estimate = nullptr);
+                              std::size_t extra_channels, const RunBudget& budget,
+                              RunEstimate* estimate = nullptr);
 
 }  // namespace wavebench::runs

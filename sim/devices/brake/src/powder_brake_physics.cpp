@@ -5,18 +5,12 @@
 
 namespace wavebench::simdevices {
 
-PowderBrakePhysics::PowderBrakePhysics(PowderBrakeParams params)
-    : params_(params), temperature_(params.ambient_c) {}
+PowderBrakePhysics::PowderBrakePhysics(model::PowderBrakeParams params)
+    : law_(params), temperature_(params.ambient_c) {}
 
 void PowderBrakePhysics::set_coil_current(double amps) noexcept {
   current_ = std::max(0.0, amps);
-  const double i = coil_current();
-  const double w = params_.hysteresis_a;
-  if (i > effective_current_) {
-    effective_current_ = i;
-  } else if (i < effective_current_ - w) {
-    effective_current_ = i + w;
-  }
+  effective_current_ = law_.next_effective_current(effective_current_, coil_current());
 }
 
 void PowderBrakePhysics::set_coil_open(bool open) noexcept {
@@ -24,26 +18,8 @@ void PowderBrakePhysics::set_coil_open(bool open) noexcept {
   set_coil_current(current_);
 }
 
-double PowderBrakePhysics::static_torque(double current) const noexcept {
-  if (current < params_.threshold_current_a) return 0.0;
-  const double k = params_.rated_torque_nm / params_.rated_current_a;
-  return k * std::min(current, params_.rated_current_a);
-}
-
-double PowderBrakePhysics::current_for_torque(double torque) const noexcept {
-  if (torque <= 0.0) return 0.0;
-  const double k = params_.rated_torque_nm / params_.rated_current_a;
-  return std::clamp(torque / k, params_.threshold_current_a, params_.rated_current_a);
-}
-
-double PowderBrakePhysics::current_for_torque_from_here(double torque) const noexcept {
-  const double rising = current_for_torque(torque);
-  if (rising >= effective_current_ || torque <= 0.0) return rising;
-  return std::max(0.0, rising - params_.hysteresis_a);
-}
-
 bool PowderBrakePhysics::stopped() const noexcept {
-  return std::abs(omega_) < params_.standstill_rad_per_s;
+  return std::abs(omega_) < params().standstill_rad_per_s;
 }
 
 double PowderBrakePhysics::shaft_torque(double driving_torque) const noexcept {
@@ -57,20 +33,21 @@ double PowderBrakePhysics::slip_power() const noexcept {
 
 void PowderBrakePhysics::step(double dt) noexcept {
   if (!(dt > 0.0)) return;
-  // Heat first, from the torque held over the step's start (inputs constant over dt).
-  const double i = coil_current();
-  const double power = slip_power() + params_.coil_resistance_ohm * i * i;
-  const double g = params_.heat_loss_w_per_k;
-  const double c = params_.heat_capacity_j_per_k;
-  if (g > 0.0) {
-    const double equilibrium = params_.ambient_c + power / g;
-    temperature_ = equilibrium + (temperature_ - equilibrium) * std::exp(-g * dt / c);
-  } else {
-    temperature_ += power * dt / c;
+  // Heat first, from the torque held over the step's start (inputs constant over dt): the
+  // exact solution of the characteristic's C·dθ/dt = P − G·(θ − θ_ambient).
+  if (law_.has_thermal_mass()) {
+    const double power = slip_power();
+    const double g = params().heat_loss_w_per_k;
+    const double c = params().heat_capacity_j_per_k;
+    if (g > 0.0) {
+      const double equilibrium = params().ambient_c + power / g;
+      temperature_ = equilibrium + (temperature_ - equilibrium) * std::exp(-g * dt / c);
+    } else {
+      temperature_ += power * dt / c;
+    }
   }
   const double target = target_torque();
-  const double tau = target > torque_ ? params_.tau_rise_s : params_.tau_fall_s;
-  torque_ = target + (torque_ - target) * std::exp(-dt / tau);
+  torque_ = target + (torque_ - target) * std::exp(-dt / law_.lag_time_constant(target, torque_));
 }
 
 }  // namespace wavebench::simdevices

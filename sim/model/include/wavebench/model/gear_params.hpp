@@ -8,6 +8,8 @@
 #include <variant>
 #include <vector>
 
+#include "wavebench/model/powder_brake_params.hpp"
+
 namespace wavebench::model {
 
 // --- Kinematics (model.md §1) -------------------------------------------------------------
@@ -154,24 +156,13 @@ struct KinematicInput {         // prescribed theta1(t): constant speed, ramp, o
 using InputDrive = std::variant<TorqueInput, DcMotorInput, ServoDriveInput, KinematicInput>;
 
 // --- Load (model.md §7) -------------------------------------------------------------------
-struct PowderBrakeParams {
-  double torque_per_amp = 0;        // [N*m/A] within the rated range
-  double threshold_current = 0;     // [A] below it no torque
-  double rated_current = 0;         // [A] above it the torque saturates
-  double time_constant = 0.05;      // [s] current -> torque lag
-  double falling_ratio = 1.0;       // torque on the falling curve / rising curve (hysteresis)
-  double current_setpoint = 0;      // [A] constant coil current
-  double holding_speed = 1e-3;      // [rad/s] regularisation width of the holding torque
-  double thermal_capacity = 0;      // [J/K], 0 = no thermal model
-  double thermal_resistance = 0;    // [K/W] to ambient
-  double ambient_temperature = 25;  // [degC]
-};
 struct LoadParams {
   Sinusoid output_torque;              // T_L + T_iL sin(w_L t), opposes nothing: signed
   Sinusoid drive_ripple;               // T_d + T_id sin(w_d t) on the input side
   double output_drag_coulomb = 0;      // bearing/seal drag opposing omega2 [N*m]
   double drag_smoothing_speed = 1e-3;  // [rad/s]
   std::optional<PowderBrakeParams> brake;
+  double brake_current_a = 0;  // constant coil current of the brake
 };
 
 // --- The whole gear system ---------------------------------------------------------------

@@ -2,6 +2,7 @@
 // How the bench thread starts a run. The daemon calls runs::execute_run through this seam so
 // that its own logic can be tested with a stand-in.
 
+#include <cstddef>
 #include <filesystem>
 #include <memory>
 
@@ -24,7 +25,7 @@ class RunLauncher {
   // refused (400) whatever the bench is doing. Thread-safe. Throws std::invalid_argument
   // naming the key, the value and what was expected.
   virtual void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
-                     const std::filesystem::path& runs_root) const = 0;
+                     std::size_t extra_channels, const std::filesystem::path& runs_root) const = 0;
 };
 
 // The real one, runs::execute_run (src/executor_run_launcher.cpp, built with the executable:

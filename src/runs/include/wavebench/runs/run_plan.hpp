@@ -5,6 +5,7 @@
 // run's bounds. Each procedure's plan() follows its run() step by step, so the two change
 // together.
 
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -38,9 +39,9 @@ double planned_move_s(double distance_rad, double speed_rad_s);
 // Starting or stopping a velocity run at `speed_rad_s`.
 double planned_ramp_s(double speed_rad_s);
 
-// What a run will write: samples.wbs at one record per SYNC, twin.csv (one text row per
-// sample) when the twin runs, and a fixed margin for results.json, the report and its plots,
-// status.json and the index row.
+// What a run will write: samples.wbs at one record per SYNC (its size grows with the bench's
+// extra channels, Bench::extra_channels()), twin.csv (one text row per sample) when the twin runs,
+// and a fixed margin for results.json, the report and its plots, status.json and the index row.
 struct RunEstimate {
   double bench_time_s = 0;
   std::uint64_t samples = 0;
@@ -53,6 +54,7 @@ struct RunEstimate {
 inline constexpr std::uint64_t kTwinCsvBytesPerSample = 256;  // 13 columns of %.9g and commas
 inline constexpr std::uint64_t kRunMarginBytes = 32ull << 20;
 
-RunEstimate estimate_run(const RunPlan& plan, const bench::BenchDescription& bench, bool twin);
+RunEstimate estimate_run(const RunPlan& plan, const bench::BenchDescription& bench,
+                         std::size_t extra_channels, bool twin);
 
 }  // namespace wavebench::runs

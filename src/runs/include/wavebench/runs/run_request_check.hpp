@@ -35,10 +35,12 @@ RunBudget run_budget(const std::filesystem::path& runs_root);
 
 // Throws std::invalid_argument naming the key, the value and what was expected, e.g.
 // "static.loads_nm[1]: got '200', expected at most 95 N*m (the bench's brake limit)".
-// Returns the run's estimate when it is accepted.
+// Returns the run's estimate when it is accepted. `extra_channels`: how many the bench records
+// beyond the core six (Bench::extra_channels().size(); a bench config's devices), each of
+// which widens every sample log record.
 RunEstimate check_run_request(const RunRequest& request, const bench::BenchDescription& bench,
-                              const RunBudget& budget);
+                              std::size_t extra_channels, const RunBudget& budget);
 RunEstimate check_run_request(const RunRequest& request, const bench::BenchDescription& bench,
-                              const std::filesystem::path& runs_root);
+                              std::size_t extra_channels, const std::filesystem::path& runs_root);
 
 }  // namespace wavebench::runs

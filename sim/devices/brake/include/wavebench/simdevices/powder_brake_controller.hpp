@@ -12,7 +12,7 @@
 namespace wavebench::simdevices {
 
 struct BrakeControllerSettings {
-  PowderBrakeParams physics;
+  model::PowderBrakeParams physics;
   double over_temperature_c = 80.0;
   // An over-temperature alarm can be reset once the coil is this much below the limit.
   double over_temperature_release_k = 5.0;

@@ -1,39 +1,17 @@
 #pragma once
-// Magnetic-powder brake (bench.md §3): the torque the powder can transmit follows the coil
-// current with a first-order lag, along a different static curve when the current falls than
-// when it rises; the brake holds the shaft up to that torque when the output stops and slips
-// at that torque when it turns, and the slip power T·ω heats a lumped thermal mass.
-//
-// Static curve (rising): T = k·I for threshold ≤ I ≤ rated, k = rated_torque / rated_current;
-// 0 below the threshold (the powder chains do not form); T saturates at the rated torque.
-// Falling: magnetic remanence keeps the curve higher — a play operator of width `hysteresis_a`
-// on the current: I_eff follows I upwards, and downwards only once I < I_eff − w, so on the
-// falling branch T = curve(I + w).
-// Lag: dT/dt = (T_ss − T)/τ with τ_rise when T_ss > T, τ_fall otherwise.
-// Heat: C·dθ/dt = P_slip + R·I² − G·(θ − θ_ambient), P_slip = T·|ω| while slipping.
-// step(dt) integrates all of it exactly for inputs held constant over dt, so the simulated
+// Magnetic-powder brake of the simulated bench (bench.md §3): the laws of
+// model::PowderBrakeCharacteristic (static curve, play-operator hysteresis, first-order lag,
+// holding at standstill, slip heating), with the coil current as a changing input. step(dt)
+// integrates the lag and the heat exactly for inputs held constant over dt, so the simulated
 // clock can run at any rate.
+
+#include "wavebench/model/powder_brake_characteristic.hpp"
 
 namespace wavebench::simdevices {
 
-struct PowderBrakeParams {
-  double rated_current_a = 2.0;
-  double rated_torque_nm = 100.0;
-  double threshold_current_a = 0.05;
-  double hysteresis_a = 0.04;
-  double tau_rise_s = 0.08;
-  double tau_fall_s = 0.15;
-  double heat_capacity_j_per_k = 1500.0;
-  double heat_loss_w_per_k = 3.0;
-  double coil_resistance_ohm = 0.0;  // Joule heating of the coil; the spec heats by slip only
-  double ambient_c = 25.0;
-  // |ω| below this counts as stopped: the brake holds instead of slipping.
-  double standstill_rad_per_s = 1e-3;
-};
-
 class PowderBrakePhysics {
  public:
-  explicit PowderBrakePhysics(PowderBrakeParams params = {});
+  explicit PowderBrakePhysics(model::PowderBrakeParams params = {});
 
   // Coil current as the controller's current loop sets it (A, ≥ 0).
   void set_coil_current(double amps) noexcept;
@@ -50,7 +28,7 @@ class PowderBrakePhysics {
   // holds at standstill.
   double torque_capacity() const noexcept { return torque_; }
   // The steady-state torque the lag is heading for.
-  double target_torque() const noexcept { return static_torque(effective_current_); }
+  double target_torque() const noexcept { return law_.static_torque(effective_current_); }
   // Torque on the output shaft, opposing motion. At standstill it balances `driving_torque`
   // (the torque the gear applies) up to the capacity.
   double shaft_torque(double driving_torque) const noexcept;
@@ -59,17 +37,20 @@ class PowderBrakePhysics {
   bool stopped() const noexcept;
 
   // Rising static curve T(I).
-  double static_torque(double current) const noexcept;
+  double static_torque(double current) const noexcept { return law_.static_torque(current); }
   // Current the rising curve needs for torque T (the inverse of static_torque within range).
-  double current_for_torque(double torque) const noexcept;
-  // Current that brings the static torque to T from the present magnetic state: the rising
-  // inverse when T is above the present curve, and below it the falling branch's inverse
-  // (I = T/k − w), so a torque-mode controller lands on T from either side.
-  double current_for_torque_from_here(double torque) const noexcept;
-  const PowderBrakeParams& params() const noexcept { return params_; }
+  double current_for_torque(double torque) const noexcept {
+    return law_.current_for_torque(torque);
+  }
+  // Current that brings the static torque to T from the present magnetic state (see
+  // PowderBrakeCharacteristic::current_for_torque_from).
+  double current_for_torque_from_here(double torque) const noexcept {
+    return law_.current_for_torque_from(torque, effective_current_);
+  }
+  const model::PowderBrakeParams& params() const noexcept { return law_.params(); }
 
  private:
-  PowderBrakeParams params_;
+  model::PowderBrakeCharacteristic law_;
   double current_ = 0.0;
   double effective_current_ = 0.0;  // current after the hysteresis play operator
   double torque_ = 0.0;
