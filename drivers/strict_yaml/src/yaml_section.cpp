@@ -140,7 +140,8 @@ bool YamlSection::has(const std::string& key) const {
 
 bool YamlSection::has_section(const std::string& key) const {
   known_.insert(key);
-  return node_[key].IsMap();
+  const YAML::Node n = node_[key];
+  return n.IsDefined() && n.IsMap();
 }
 
 std::vector<std::string> YamlSection::keys() const {
