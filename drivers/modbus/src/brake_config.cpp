@@ -47,9 +47,8 @@ RegisterSpec read_spec(YamlSection& s, RegisterSpec spec) {
 }
 
 void read_map(YamlSection& s, BrakeRegisterMap& map) {
-  if (const auto t = s.optional_choice("word_order",
-                                       {"abcd", "cdab", "badc", "dcba", "ABCD", "CDAB", "BADC",
-                                        "DCBA"})) {
+  if (const auto t = s.optional_choice(
+          "word_order", {"abcd", "cdab", "badc", "dcba", "ABCD", "CDAB", "BADC", "DCBA"})) {
     const char c = static_cast<char>(std::tolower(static_cast<unsigned char>((*t)[0])));
     map.word_order = c == 'a'   ? WordOrder::abcd
                      : c == 'c' ? WordOrder::cdab
@@ -75,8 +74,7 @@ void read_map(YamlSection& s, BrakeRegisterMap& map) {
        {"control", "watchdog_timeout", "heartbeat", "setpoint", "setpoint_ramp"}) {
     for (const auto& [sname, spec] : specs) {
       if (std::string(sname) == name && spec->table != RegisterTable::holding) {
-        s.fail(std::string(name) + ".table", "input",
-               "holding (the client writes this register)");
+        s.fail(std::string(name) + ".table", "input", "holding (the client writes this register)");
       }
     }
   }
@@ -175,8 +173,7 @@ BrakeClientConfig read_brake_config(YamlSection& s) {
   if (auto l = s.optional_section("limits")) {
     cfg.limits.max_current_a = l->number_or("max_current_a", 0.0, 1000.0, cfg.limits.max_current_a);
     cfg.limits.max_torque_nm = l->number_or("max_torque_nm", 0.0, 1e6, cfg.limits.max_torque_nm);
-    cfg.limits.max_ramp_per_s =
-        l->number_or("max_ramp_per_s", 0.0, 1e9, cfg.limits.max_ramp_per_s);
+    cfg.limits.max_ramp_per_s = l->number_or("max_ramp_per_s", 0.0, 1e9, cfg.limits.max_ramp_per_s);
     l->finish();
   }
   if (auto m = s.optional_section("map")) read_map(*m, cfg.map);

@@ -224,8 +224,7 @@ void read_devices(YamlSection& root, BenchConfig& c, const std::filesystem::path
     read_expectations(*s, base, c.drive.expect);
     set_if(s->optional_integer("counts_per_revolution", 1, 1LL << 31),
            c.drive.counts_per_revolution);
-    set_if(s->optional_number("profile_acceleration", 0, 1e9),
-           c.drive.profile_acceleration_rad_s2);
+    set_if(s->optional_number("profile_acceleration", 0, 1e9), c.drive.profile_acceleration_rad_s2);
     set_if(s->optional_quantity_in("target_settle", Dimension::kTime, 0, 60, "a time in [0, 60 s]"),
            c.drive.target_settle_s);
     read_drive_units(*s, c.drive);

@@ -48,8 +48,8 @@ void read_factor_group(YamlSection& s, DriveFactorGroupConfig& f) {
 void read_drive_units(YamlSection& s, ServoDriveConfig& d) {
   if (const auto v =
           s.optional_choice("velocity_unit", {"counts/s", "rpm", "0.1 rpm", "factor_group"})) {
-    d.velocity_unit = *v == "counts/s" ? DriveVelocityUnit::kCounts
-                      : *v == "rpm"    ? DriveVelocityUnit::kRpm
+    d.velocity_unit = *v == "counts/s"  ? DriveVelocityUnit::kCounts
+                      : *v == "rpm"     ? DriveVelocityUnit::kRpm
                       : *v == "0.1 rpm" ? DriveVelocityUnit::kDeciRpm
                                         : DriveVelocityUnit::kFactorGroup;
   }
@@ -84,10 +84,8 @@ void read_drive(YamlSection& s, ServoDriveConfig& d) {
     d.control_period = *us * 1e-6;
   }
   set_if(s.optional_integer("quick_stop_option", 0, 8), d.quick_stop_option);
-  set_if(s.optional_integer("following_error_window", 0, 0xFFFFFFFFLL),
-         d.following_error_window);
-  set_if(s.optional_integer("following_error_timeout_ms", 0, 65535),
-         d.following_error_timeout_ms);
+  set_if(s.optional_integer("following_error_window", 0, 0xFFFFFFFFLL), d.following_error_window);
+  set_if(s.optional_integer("following_error_timeout_ms", 0, 65535), d.following_error_timeout_ms);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), d.identity.serial_number);
   s.finish();
 }
@@ -172,8 +170,7 @@ SimulatedBenchConfig read_simulated_bench_section(YamlSection& sb, SimulatedBenc
   const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
   if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
     sb.fail("*.node_id",
-            std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " +
-                std::to_string(ids[2]),
+            std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " + std::to_string(ids[2]),
             "three different node ids");
   }
   if (base.input_encoder &&
