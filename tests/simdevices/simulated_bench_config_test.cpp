@@ -87,14 +87,14 @@ simbench:
 
 TEST(SimulatedBenchConfig, BadDriveUnitsNameKeyValueAndExpectation) {
   expect_message("simbench: {drive: {velocity_unit: rmp}}",
-                 "simbench.drive.velocity_unit: got 'rmp', expected counts/s, rpm, 0.1 rpm or "
-                 "factor_group");
+                 "simbench.drive.velocity_unit: got 'rmp', expected one of "
+                 "counts/s|rpm|0.1 rpm|factor_group");
   expect_message("simbench: {drive: {absent_objects: [\"0x6064\"]}}",
-                 "simbench.drive.absent_objects: got '0x6064'");
+                 "simbench.drive.absent_objects[0]: got '0x6064'");
   expect_message("simbench: {drive: {absent_objects: \"0x60F4\"}}",
                  "simbench.drive.absent_objects: got '0x60F4', expected a list");
   expect_message("simbench: {drive: {factor_group: {gear_ratio: [3]}}}",
-                 "simbench.drive.factor_group.gear_ratio: got '<list>', expected [numerator, "
+                 "simbench.drive.factor_group.gear_ratio: got '[3]', expected [numerator, "
                  "denominator]");
   expect_message("simbench: {drive: {factor_group: {feed_constant: [-1, 1]}}}",
                  "simbench.drive.factor_group.feed_constant");

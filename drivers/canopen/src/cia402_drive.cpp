@@ -64,8 +64,8 @@ using enum UsedInPdo;
 namespace dt = datatype;
 
 // SDO: the state machine, modes, profile moves and velocity; TPDO1 statusword and position,
-// TPDO2 velocity and following error (the bench's drive device); the controlword is RPDO-mappable for the
-// quick stop.
+// TPDO2 velocity and following error (the bench's drive device); the controlword is RPDO-mappable
+// for the quick stop.
 constexpr auto kDriveObjects = with_node_objects(std::to_array<UsedObject>({
     {0x1A00, 2, "TPDO1 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
     {0x1801, 1, "TPDO2 COB-ID", dt::kUnsigned32, 0, kReadWrite},

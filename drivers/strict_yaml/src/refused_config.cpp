@@ -29,4 +29,8 @@ RefusedConfig::RefusedConfig(std::string key, std::string value, std::string exp
       expected_(std::move(expected)),
       source_(std::move(source)) {}
 
+RefusedConfig RefusedConfig::with_source(const std::string& source) const {
+  return RefusedConfig(key_, value_, expected_, source);
+}
+
 }  // namespace wavebench::strict_yaml

@@ -1,13 +1,9 @@
 #include "wavebench/bench/bench_config.hpp"
 
-#include <yaml-cpp/yaml.h>
-
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <functional>
 #include <set>
-#include <sstream>
 
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/config/config_text.hpp"
@@ -15,6 +11,7 @@
 #include "wavebench/config/units.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 #include "wavebench/storage/sync_sample.hpp"
+#include "wavebench/strict_yaml/yaml_section.hpp"
 
 #ifndef WAVEBENCH_CONFIG_DIR
 #define WAVEBENCH_CONFIG_DIR "configs"
@@ -25,88 +22,33 @@ namespace {
 
 using config::ConfigError;
 using config::Dimension;
+using strict_yaml::YamlSection;
 
-std::string scalar_text(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  std::ostringstream out;
-  out << node;
-  return out.str();
+template <typename T>
+void set_if(std::optional<long long> v, T& out) {
+  if (v) out = static_cast<T>(*v);
 }
 
-void check_keys(const YAML::Node& node, const std::string& section,
-                const std::set<std::string>& allowed) {
-  if (!node.IsMap()) throw ConfigError(section, scalar_text(node), "a mapping");
-  for (const auto& item : node) {
-    const auto key = item.first.as<std::string>();
-    if (!allowed.contains(key)) {
-      std::string list;
-      for (const auto& a : allowed) list += (list.empty() ? "" : ", ") + a;
-      throw ConfigError(section.empty() ? key : section + "." + key, scalar_text(item.second),
-                        "one of the known keys: " + list);
-    }
-  }
-}
-
-double quantity(const YAML::Node& node, Dimension dim, const std::string& key) {
-  if (!node.IsScalar()) throw ConfigError(key, scalar_text(node), config::describe(dim));
-  return config::parse_quantity(node.Scalar(), dim, key);
-}
-
-double number(const YAML::Node& node, const std::string& key, double lo, double hi) {
-  double v = 0;
-  try {
-    v = node.as<double>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(key, scalar_text(node), "a number");
-  }
-  if (!std::isfinite(v) || v < lo || v > hi) {
-    std::ostringstream expected;
-    expected << "a number in [" << lo << ", " << hi << "]";
-    throw ConfigError(key, scalar_text(node), expected.str());
-  }
-  return v;
-}
-
-long integer(const YAML::Node& node, const std::string& key, long lo, long hi) {
-  long v = 0;
-  try {
-    v = node.as<long>();
-  } catch (const YAML::Exception&) {
-    throw ConfigError(key, scalar_text(node), "an integer");
-  }
-  if (v < lo || v > hi) {
-    throw ConfigError(key, scalar_text(node),
-                      "an integer in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  }
-  return v;
-}
-
-std::string text(const YAML::Node& node, const std::string& key) {
-  if (!node.IsScalar()) throw ConfigError(key, scalar_text(node), "a string");
-  return node.Scalar();
+void set_if(std::optional<double> v, double& out) {
+  if (v) out = *v;
 }
 
 // Names and serials go into run folders, the runs index and report titles: one short line.
-std::string label(const YAML::Node& node, const std::string& key) {
-  std::string v = text(node, key);
+void read_label(YamlSection& s, const char* key, std::string& out) {
+  const auto v = s.optional_text(key);
+  if (!v) return;
   constexpr std::size_t kMaxLabel = 128;
-  if (v.empty() || v.size() > kMaxLabel) {
-    throw ConfigError(key, v, "a text of 1 to " + std::to_string(kMaxLabel) + " characters");
+  if (v->empty() || v->size() > kMaxLabel) {
+    s.fail(key, *v, "a text of 1 to " + std::to_string(kMaxLabel) + " characters");
   }
-  return v;
+  out = *v;
 }
 
-// A quantity in [lo, hi] (SI), for values whose extremes would stall or flood the bench.
-double bounded_quantity(const YAML::Node& node, Dimension dim, const std::string& key, double lo,
-                        double hi, const std::string& range) {
-  const double v = quantity(node, dim, key);
-  if (v < lo || v > hi) throw ConfigError(key, scalar_text(node), range);
-  return v;
-}
-
-void optional(const YAML::Node& section, const char* key,
-              const std::function<void(const YAML::Node&)>& read) {
-  if (const auto n = section[key]; n) read(n);
+// A sign of +1 or -1 (a direction, a channel's sense).
+void read_sign(YamlSection& s, const char* key, int& out, const char* expected) {
+  const auto v = s.optional_integer(key, -1, 1);
+  if (v && *v == 0) s.fail(key, "0", expected);
+  set_if(v, out);
 }
 
 std::filesystem::path resolve(const std::filesystem::path& base, const std::string& p) {
@@ -114,158 +56,126 @@ std::filesystem::path resolve(const std::filesystem::path& base, const std::stri
   return path.is_absolute() ? path : (base / path).lexically_normal();
 }
 
-// "0x6130:1" -> index, sub.
-void parse_object(const std::string& value, const std::string& key, std::uint16_t& index,
-                  std::uint8_t& sub) {
-  const auto colon = value.find(':');
+// "0x6130:1" -> index, sub. Hand-written: the CiA 306 notation has no parser here.
+void read_object(YamlSection& s, std::uint16_t& index, std::uint8_t& sub) {
+  const auto value = s.optional_text("object");
+  if (!value) return;
+  const auto colon = value->find(':');
   try {
     std::size_t used = 0;
-    const unsigned long i = std::stoul(value.substr(0, colon), &used, 0);
-    if (used != (colon == std::string::npos ? value.size() : colon) || i > 0xFFFF)
-      throw std::invalid_argument(value);
-    unsigned long s = 0;
+    const unsigned long i = std::stoul(value->substr(0, colon), &used, 0);
+    if (used != (colon == std::string::npos ? value->size() : colon) || i > 0xFFFF)
+      throw std::invalid_argument(*value);
+    unsigned long sb = 0;
     if (colon != std::string::npos) {
-      s = std::stoul(value.substr(colon + 1), &used, 0);
-      if (used != value.size() - colon - 1 || s > 0xFF) throw std::invalid_argument(value);
+      sb = std::stoul(value->substr(colon + 1), &used, 0);
+      if (used != value->size() - colon - 1 || sb > 0xFF) throw std::invalid_argument(*value);
     }
     index = static_cast<std::uint16_t>(i);
-    sub = static_cast<std::uint8_t>(s);
+    sub = static_cast<std::uint8_t>(sb);
   } catch (const std::exception&) {
-    throw ConfigError(key, value, "an object as INDEX:SUB, e.g. \"0x6130:1\"");
+    s.fail("object", *value, "an object as INDEX:SUB, e.g. \"0x6130:1\"");
   }
 }
 
-void read_top(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
-  auto& d = c.description;
-  optional(root, "name", [&](const YAML::Node& n) { d.name = label(n, "name"); });
-  optional(root, "unit_serial",
-           [&](const YAML::Node& n) { d.unit_serial = label(n, "unit_serial"); });
-  optional(root, "rated_torque", [&](const YAML::Node& n) {
-    d.rated_torque_nm = quantity(n, Dimension::kTorque, "rated_torque");
-    if (d.rated_torque_nm <= 0) throw ConfigError("rated_torque", scalar_text(n), "a torque > 0");
-  });
-  optional(root, "gear", [&](const YAML::Node& n) {
-    check_keys(n, "gear", {"ratio", "direction_sign"});
-    optional(n, "ratio",
-             [&](const YAML::Node& v) { d.sense.ratio = number(v, "gear.ratio", 1e-3, 1e6); });
-    optional(n, "direction_sign", [&](const YAML::Node& v) {
-      const long s = integer(v, "gear.direction_sign", -1, 1);
-      if (s == 0) throw ConfigError("gear.direction_sign", "0", "+1 or -1");
-      d.sense.direction_sign = static_cast<int>(s);
-    });
-  });
-  optional(root, "sync_period", [&](const YAML::Node& n) {
-    d.sync_period_s = quantity(n, Dimension::kTime, "sync_period");
-    if (d.sync_period_s < 1e-4 || d.sync_period_s > 1.0)
-      throw ConfigError("sync_period", scalar_text(n), "a period between 100 us and 1 s");
-    if (std::abs(std::round(d.sync_period_s * 1e6) - d.sync_period_s * 1e6) > 1e-6)
-      throw ConfigError("sync_period", scalar_text(n), "a whole number of microseconds");
-  });
-  optional(root, "clock", [&](const YAML::Node& n) {
-    const auto v = text(n, "clock");
-    if (v == "real") {
-      c.clock = BenchClockKind::kReal;
-    } else if (v == "simulated") {
-      c.clock = BenchClockKind::kSimulated;
-    } else {
-      throw ConfigError("clock", v, "real or simulated");
-    }
-  });
-  optional(root, "twin_case", [&](const YAML::Node& n) {
-    d.twin_case_path = resolve(base, text(n, "twin_case")).string();
-  });
+void read_value_type(YamlSection& s, canopen::ValueType& out) {
+  const auto t = s.optional_text("type");
+  if (!t) return;
+  const auto type = canopen::parse_value_type(*t);
+  if (!type) s.fail("type", *t, "u8, u16, u32, i8, i16, i32, f32 or f64");
+  out = *type;
 }
 
-void read_can(const YAML::Node& n, CanSettings& can) {
-  check_keys(n, "can",
-             {"interface", "bitrate", "sdo_timeout", "heartbeat_producer", "nodes",
-              "bus_load_warning", "cycle_timeout", "quick_stop_timeout"});
-  optional(n, "interface", [&](const YAML::Node& v) {
-    can.interface = text(v, "can.interface");
-    if (can.interface.empty())
-      throw ConfigError("can.interface", "", "inproc or an interface name");
-  });
-  optional(n, "bitrate",
-           [&](const YAML::Node& v) { can.bitrate = number(v, "can.bitrate", 1e4, 1e7); });
-  optional(n, "sdo_timeout", [&](const YAML::Node& v) {
-    can.sdo_timeout_s = quantity(v, Dimension::kTime, "can.sdo_timeout");
-    if (can.sdo_timeout_s <= 0) throw ConfigError("can.sdo_timeout", scalar_text(v), "a time > 0");
-  });
-  optional(n, "heartbeat_producer", [&](const YAML::Node& v) {
-    can.heartbeat_producer_s = quantity(v, Dimension::kTime, "can.heartbeat_producer");
-    if (can.heartbeat_producer_s < 1e-3 || can.heartbeat_producer_s > 65.535)
-      throw ConfigError("can.heartbeat_producer", scalar_text(v), "a time in [1 ms, 65.535 s]");
-  });
-  optional(n, "bus_load_warning", [&](const YAML::Node& v) {
-    can.bus_load_warning = number(v, "can.bus_load_warning", 0, 10);
-  });
-  optional(n, "cycle_timeout", [&](const YAML::Node& v) {
-    can.cycle_timeout_s = quantity(v, Dimension::kTime, "can.cycle_timeout");
-    if (can.cycle_timeout_s <= 0)
-      throw ConfigError("can.cycle_timeout", scalar_text(v), "a time > 0");
-  });
-  optional(n, "quick_stop_timeout", [&](const YAML::Node& v) {
-    can.quick_stop_timeout_s = quantity(v, Dimension::kTime, "can.quick_stop_timeout");
-    if (!(can.quick_stop_timeout_s > 0) || can.quick_stop_timeout_s > 10)
-      throw ConfigError("can.quick_stop_timeout", scalar_text(v), "a time in (0, 10 s]");
-  });
-  optional(n, "nodes", [&](const YAML::Node& v) {
-    check_keys(v, "can.nodes", {"drive", "encoder", "torque_sensor"});
-    auto node = [&](const char* key, std::uint8_t& out) {
-      optional(v, key, [&](const YAML::Node& x) {
-        out = static_cast<std::uint8_t>(integer(x, std::string("can.nodes.") + key, 1, 127));
-      });
-    };
-    node("drive", can.drive_node);
-    node("encoder", can.encoder_node);
-    node("torque_sensor", can.torque_node);
-  });
+void read_top(YamlSection& root, BenchConfig& c, const std::filesystem::path& base) {
+  auto& d = c.description;
+  read_label(root, "name", d.name);
+  read_label(root, "unit_serial", d.unit_serial);
+  if (const auto v = root.optional_quantity("rated_torque", Dimension::kTorque)) {
+    if (*v <= 0) root.fail("rated_torque", root.value_text("rated_torque"), "a torque > 0");
+    d.rated_torque_nm = *v;
+  }
+  if (auto g = root.optional_section("gear")) {
+    set_if(g->optional_number("ratio", 1e-3, 1e6), d.sense.ratio);
+    read_sign(*g, "direction_sign", d.sense.direction_sign, "+1 or -1");
+    g->finish();
+  }
+  if (const auto v = root.optional_quantity_in("sync_period", Dimension::kTime, 1e-4, 1.0,
+                                               "a period between 100 us and 1 s")) {
+    if (std::abs(std::round(*v * 1e6) - *v * 1e6) > 1e-6)
+      root.fail("sync_period", root.value_text("sync_period"), "a whole number of microseconds");
+    d.sync_period_s = *v;
+  }
+  if (const auto v = root.optional_choice("clock", {"real", "simulated"})) {
+    c.clock = *v == "real" ? BenchClockKind::kReal : BenchClockKind::kSimulated;
+  }
+  if (const auto v = root.optional_text("twin_case")) d.twin_case_path = resolve(base, *v).string();
+}
+
+void read_can(YamlSection& s, CanSettings& can) {
+  if (const auto v = s.optional_text("interface")) {
+    if (v->empty()) s.fail("interface", "", "inproc or an interface name");
+    can.interface = *v;
+  }
+  set_if(s.optional_number("bitrate", 1e4, 1e7), can.bitrate);
+  if (const auto v = s.optional_quantity("sdo_timeout", Dimension::kTime)) {
+    if (*v <= 0) s.fail("sdo_timeout", s.value_text("sdo_timeout"), "a time > 0");
+    can.sdo_timeout_s = *v;
+  }
+  set_if(s.optional_quantity_in("heartbeat_producer", Dimension::kTime, 1e-3, 65.535,
+                                "a time in [1 ms, 65.535 s]"),
+         can.heartbeat_producer_s);
+  set_if(s.optional_number("bus_load_warning", 0, 10), can.bus_load_warning);
+  if (const auto v = s.optional_quantity("cycle_timeout", Dimension::kTime)) {
+    if (*v <= 0) s.fail("cycle_timeout", s.value_text("cycle_timeout"), "a time > 0");
+    can.cycle_timeout_s = *v;
+  }
+  if (const auto v = s.optional_quantity("quick_stop_timeout", Dimension::kTime)) {
+    if (!(*v > 0) || *v > 10)
+      s.fail("quick_stop_timeout", s.value_text("quick_stop_timeout"), "a time in (0, 10 s]");
+    can.quick_stop_timeout_s = *v;
+  }
+  if (auto nodes = s.optional_section("nodes")) {
+    set_if(nodes->optional_integer("drive", 1, 127), can.drive_node);
+    set_if(nodes->optional_integer("encoder", 1, 127), can.encoder_node);
+    set_if(nodes->optional_integer("torque_sensor", 1, 127), can.torque_node);
+    nodes->finish();
+  }
+  s.finish();
   if (can.drive_node == can.encoder_node || can.drive_node == can.torque_node ||
       can.encoder_node == can.torque_node) {
-    throw ConfigError("can.nodes",
-                      std::to_string(can.drive_node) + ", " + std::to_string(can.encoder_node) +
-                          ", " + std::to_string(can.torque_node),
-                      "three different node ids");
+    s.fail("nodes",
+           std::to_string(can.drive_node) + ", " + std::to_string(can.encoder_node) + ", " +
+               std::to_string(can.torque_node),
+           "three different node ids");
   }
 }
 
 // `eds:` and `identity:` of a CANopen device section.
-void read_expectations(const YAML::Node& n, const std::string& section,
-                       const std::filesystem::path& base, NodeExpectations& e) {
-  optional(n, "eds", [&](const YAML::Node& v) {
-    const auto path = resolve(base, text(v, section + ".eds"));
+void read_expectations(YamlSection& s, const std::filesystem::path& base, NodeExpectations& e) {
+  if (const auto v = s.optional_text("eds")) {
+    const auto path = resolve(base, *v);
     try {
       e.eds = std::make_shared<const canopen::Eds>(canopen::Eds::load(path));
     } catch (const canopen::EdsError& error) {
-      throw ConfigError(section + ".eds", path.string(),
-                        std::string("a CiA 306 EDS: ") + error.what());
+      s.fail("eds", path.string(), std::string("a CiA 306 EDS: ") + error.what());
     }
     e.eds_path = path;
-  });
-  optional(n, "identity", [&](const YAML::Node& id) {
-    check_keys(id, section + ".identity",
-               {"vendor_id", "product_code", "revision", "serial_number"});
-    auto read = [&](const char* key, std::optional<std::uint32_t>& out) {
-      optional(id, key, [&](const YAML::Node& v) {
-        out = static_cast<std::uint32_t>(integer(v, section + ".identity." + key, 0, 0xFFFFFFFFL));
-      });
-    };
-    read("vendor_id", e.identity.vendor_id);
-    read("product_code", e.identity.product_code);
-    read("revision", e.identity.revision);
-    read("serial_number", e.identity.serial_number);
-  });
+  }
+  if (auto id = s.optional_section("identity")) {
+    set_if(id->optional_integer("vendor_id", 0, 0xFFFFFFFFLL), e.identity.vendor_id);
+    set_if(id->optional_integer("product_code", 0, 0xFFFFFFFFLL), e.identity.product_code);
+    set_if(id->optional_integer("revision", 0, 0xFFFFFFFFLL), e.identity.revision);
+    set_if(id->optional_integer("serial_number", 0, 0xFFFFFFFFLL), e.identity.serial_number);
+    id->finish();
+  }
 }
 
 // Where the config is silent, values from the devices' EDS files: the torque sensor's data type
 // (the DataType of its object). The encoder's resolution and turns stay read from the device
 // (0x6501/0x6502), which knows its own configuration better than a data sheet's defaults.
-void apply_eds_defaults(const YAML::Node& root, BenchConfig& c) {
-  const auto given = [&](const char* section, const char* key) {
-    return root[section] && root[section][key];
-  };
+void apply_eds_defaults(bool torque_type_given, BenchConfig& c) {
   auto& sensor = c.torque_sensor.sensor;
-  if (!given("torque_sensor", "type") && c.torque_sensor.expect.eds) {
+  if (!torque_type_given && c.torque_sensor.expect.eds) {
     if (const auto* o = c.torque_sensor.expect.eds->find(sensor.index, sensor.sub)) {
       for (auto t : {canopen::ValueType::u8, canopen::ValueType::u16, canopen::ValueType::u32,
                      canopen::ValueType::u64, canopen::ValueType::i8, canopen::ValueType::i16,
@@ -277,24 +187,21 @@ void apply_eds_defaults(const YAML::Node& root, BenchConfig& c) {
   }
 }
 
-void read_drive_units(const YAML::Node& n, DriveSettings& d) {
+void read_drive_units(YamlSection& s, DriveSettings& d) {
   const auto unit = [&](const char* key, DriveQuantity q, DriveUnitChoice& out) {
-    optional(n, key, [&](const YAML::Node& v) {
-      const std::string name = std::string("drive.") + key;
-      const auto t = text(v, name);
-      try {
-        out = parse_drive_unit(t, q);
-      } catch (const std::invalid_argument& e) {
-        throw ConfigError(name, t, e.what());
-      }
-    });
+    const auto t = s.optional_text(key);
+    if (!t) return;
+    try {
+      out = parse_drive_unit(*t, q);
+    } catch (const std::invalid_argument& e) {
+      s.fail(key, *t, e.what());
+    }
   };
   unit("position_unit", DriveQuantity::kPosition, d.position_unit);
   unit("velocity_unit", DriveQuantity::kVelocity, d.velocity_unit);
   unit("acceleration_unit", DriveQuantity::kAcceleration, d.acceleration_unit);
-  optional(n, "torque_actual_scale", [&](const YAML::Node& v) {
-    const auto t = text(v, "drive.torque_actual_scale");
-    if (t == "rated") {
+  if (const auto t = s.optional_text("torque_actual_scale")) {
+    if (*t == "rated") {
       d.torque_actual_nm_per_unit.reset();
       return;
     }
@@ -303,169 +210,130 @@ void read_drive_units(const YAML::Node& n, DriveSettings& d) {
         "(\"0.001 N*m\")";
     double scale = 0;
     try {
-      scale = config::parse_quantity(t, Dimension::kTorque, "drive.torque_actual_scale");
+      scale = strict_yaml::parse_quantity(*t, Dimension::kTorque, "");
     } catch (const ConfigError&) {
-      throw ConfigError("drive.torque_actual_scale", t, expected);
+      s.fail("torque_actual_scale", *t, expected);
     }
-    if (!(scale > 0)) throw ConfigError("drive.torque_actual_scale", t, expected);
+    if (!(scale > 0)) s.fail("torque_actual_scale", *t, expected);
     d.torque_actual_nm_per_unit = scale;
-  });
+  }
 }
 
-void read_devices(const YAML::Node& root, BenchConfig& c, const std::filesystem::path& base) {
-  optional(root, "drive", [&](const YAML::Node& n) {
-    check_keys(n, "drive",
-               {"counts_per_revolution", "profile_acceleration", "target_settle", "position_unit",
-                "velocity_unit", "acceleration_unit", "torque_actual_scale", "eds", "identity"});
-    read_expectations(n, "drive", base, c.drive.expect);
-    optional(n, "counts_per_revolution", [&](const YAML::Node& v) {
-      c.drive.counts_per_revolution =
-          static_cast<std::uint32_t>(integer(v, "drive.counts_per_revolution", 1, 1L << 31));
-    });
-    optional(n, "profile_acceleration", [&](const YAML::Node& v) {
-      c.drive.profile_acceleration_rad_s2 = number(v, "drive.profile_acceleration", 0, 1e9);
-    });
-    optional(n, "target_settle", [&](const YAML::Node& v) {
-      c.drive.target_settle_s = bounded_quantity(v, Dimension::kTime, "drive.target_settle", 0, 60,
-                                                 "a time in [0, 60 s]");
-    });
-    read_drive_units(n, c.drive);
-  });
-  optional(root, "encoder", [&](const YAML::Node& n) {
-    check_keys(n, "encoder", {"counts_per_turn", "turns", "noise", "eds", "identity"});
-    read_expectations(n, "encoder", base, c.encoder.expect);
-    optional(n, "counts_per_turn", [&](const YAML::Node& v) {
-      c.encoder.counts_per_turn =
-          static_cast<std::uint32_t>(integer(v, "encoder.counts_per_turn", 2, 1L << 31));
-    });
-    optional(n, "turns", [&](const YAML::Node& v) {
-      c.encoder.turns = static_cast<std::uint32_t>(integer(v, "encoder.turns", 1, 1L << 20));
-    });
-    optional(n, "noise", [&](const YAML::Node& v) {
-      c.encoder.noise_rad = bounded_quantity(v, Dimension::kAngle, "encoder.noise", 0, M_PI / 180,
-                                             "an angle in [0, 1 deg]");
-    });
-  });
-  optional(root, "torque_sensor", [&](const YAML::Node& n) {
-    check_keys(n, "torque_sensor",
-               {"object", "type", "scale", "offset", "noise", "eds", "identity"});
-    read_expectations(n, "torque_sensor", base, c.torque_sensor.expect);
-    auto& s = c.torque_sensor.sensor;
-    optional(n, "object", [&](const YAML::Node& v) {
-      parse_object(text(v, "torque_sensor.object"), "torque_sensor.object", s.index, s.sub);
-    });
-    optional(n, "type", [&](const YAML::Node& v) {
-      const auto t = text(v, "torque_sensor.type");
-      const auto type = canopen::parse_value_type(t);
-      if (!type)
-        throw ConfigError("torque_sensor.type", t, "u8, u16, u32, i8, i16, i32, f32 or f64");
-      s.type = *type;
-    });
-    optional(n, "scale", [&](const YAML::Node& v) {
-      s.scale = number(v, "torque_sensor.scale", -1e9, 1e9);
-      if (s.scale == 0)
-        throw ConfigError("torque_sensor.scale", "0", "a non-zero N*m per raw unit");
-    });
-    optional(n, "offset", [&](const YAML::Node& v) {
-      s.offset = bounded_quantity(v, Dimension::kTorque, "torque_sensor.offset", -1e6, 1e6,
-                                  "a torque in [-1e6, 1e6] N*m");
-    });
-    optional(n, "noise", [&](const YAML::Node& v) {
-      c.torque_sensor.noise_nm = bounded_quantity(v, Dimension::kTorque, "torque_sensor.noise", 0,
-                                                  1e4, "a torque in [0, 1e4] N*m");
-    });
-  });
+void read_devices(YamlSection& root, BenchConfig& c, const std::filesystem::path& base) {
+  if (auto s = root.optional_section("drive")) {
+    read_expectations(*s, base, c.drive.expect);
+    set_if(s->optional_integer("counts_per_revolution", 1, 1LL << 31),
+           c.drive.counts_per_revolution);
+    set_if(s->optional_number("profile_acceleration", 0, 1e9), c.drive.profile_acceleration_rad_s2);
+    set_if(s->optional_quantity_in("target_settle", Dimension::kTime, 0, 60, "a time in [0, 60 s]"),
+           c.drive.target_settle_s);
+    read_drive_units(*s, c.drive);
+    s->finish();
+  }
+  if (auto s = root.optional_section("encoder")) {
+    read_expectations(*s, base, c.encoder.expect);
+    set_if(s->optional_integer("counts_per_turn", 2, 1LL << 31), c.encoder.counts_per_turn);
+    set_if(s->optional_integer("turns", 1, 1LL << 20), c.encoder.turns);
+    set_if(s->optional_quantity_in("noise", Dimension::kAngle, 0, M_PI / 180,
+                                   "an angle in [0, 1 deg]"),
+           c.encoder.noise_rad);
+    s->finish();
+  }
+  bool torque_type_given = false;
+  if (auto s = root.optional_section("torque_sensor")) {
+    read_expectations(*s, base, c.torque_sensor.expect);
+    auto& sensor = c.torque_sensor.sensor;
+    read_object(*s, sensor.index, sensor.sub);
+    torque_type_given = s->has("type");
+    read_value_type(*s, sensor.type);
+    if (const auto v = s->optional_number("scale", -1e9, 1e9)) {
+      if (*v == 0) s->fail("scale", s->value_text("scale"), "a non-zero N*m per raw unit");
+      sensor.scale = *v;
+    }
+    set_if(s->optional_quantity_in("offset", Dimension::kTorque, -1e6, 1e6,
+                                   "a torque in [-1e6, 1e6] N*m"),
+           sensor.offset);
+    set_if(s->optional_quantity_in("noise", Dimension::kTorque, 0, 1e4, "a torque in [0, 1e4] N*m"),
+           c.torque_sensor.noise_nm);
+    s->finish();
+  }
+  apply_eds_defaults(torque_type_given, c);
+}
+
+// One `devices:` entry: {kind, node, sign, the kind's keys}; keys another kind has are refused.
+ChannelDeviceSettings read_channel_device(YamlSection& v, const std::string& channel,
+                                          std::set<int>& nodes) {
+  ChannelDeviceSettings d;
+  d.channel = channel;
+  d.kind = v.text("kind");
+  const auto* kind = find_channel_device_kind(d.kind);
+  if (!kind) {
+    std::string list;
+    for (const auto& k : channel_device_kinds()) list += (list.empty() ? "" : ", ") + k.kind;
+    v.fail("kind", d.kind, "one of " + list);
+  }
+  const auto takes = [&](const char* key) {
+    return std::find(kind->keys.begin(), kind->keys.end(), key) != kind->keys.end();
+  };
+  set_if(v.optional_integer("node", 1, 127), d.node);
+  if (!v.has("node")) v.fail("node", "", "a node id in [1, 127] (the key is required)");
+  if (!nodes.insert(d.node).second)
+    v.fail("node", std::to_string(d.node), "a node id no other device of the bench uses");
+  read_sign(v, "sign", d.sign, "1 or -1");
+  if (takes("counts_per_turn"))
+    set_if(v.optional_integer("counts_per_turn", 2, 1LL << 31), d.counts_per_turn);
+  if (takes("turns")) set_if(v.optional_integer("turns", 1, 1LL << 20), d.turns);
+  if (takes("object")) read_object(v, d.torque.index, d.torque.sub);
+  if (takes("type")) read_value_type(v, d.torque.type);
+  if (takes("scale")) {
+    if (const auto x = v.optional_number("scale", -1e9, 1e9)) {
+      if (*x == 0) v.fail("scale", v.value_text("scale"), "a non-zero scale");
+      d.torque.scale = *x;
+    }
+  }
+  if (takes("offset")) {
+    set_if(v.optional_quantity_in("offset", Dimension::kTorque, -1e6, 1e6,
+                                  "a torque in [-1e6, 1e6] N*m"),
+           d.torque.offset);
+  }
+  v.finish();
+  return d;
 }
 
 // `devices:`: channel name -> {kind, node, sign, the kind's keys}. Kinds come from the
 // registry (device_kind_registry.cpp), so a new kind needs no change here beyond its keys.
-void read_channel_devices(const YAML::Node& root, BenchConfig& c) {
-  optional(root, "devices", [&](const YAML::Node& n) {
-    if (!n.IsMap()) throw ConfigError("devices", scalar_text(n), "a mapping of channel names");
-    std::set<int> nodes{c.can.drive_node, c.can.encoder_node, c.can.torque_node};
-    for (const auto& item : n) {
-      ChannelDeviceSettings d;
-      d.channel = item.first.as<std::string>();
-      const std::string where = "devices." + d.channel;
-      try {
-        storage::check_extra_channels(std::vector<storage::ChannelInfo>{{d.channel, "rad"}});
-      } catch (const std::invalid_argument& e) {
-        throw ConfigError("devices", d.channel,
-                          "a channel name of [a-z0-9_], 1..31 bytes, "
-                          "not a core channel's (" +
-                              std::string(e.what()) + ")");
-      }
-      const YAML::Node& v = item.second;
-      if (!v.IsMap()) throw ConfigError(where, scalar_text(v), "a mapping with kind and node");
-      if (!v["kind"]) throw ConfigError(where + ".kind", "(missing)", "a device kind");
-      d.kind = text(v["kind"], where + ".kind");
-      const auto* kind = find_channel_device_kind(d.kind);
-      if (!kind) {
-        std::string list;
-        for (const auto& k : channel_device_kinds()) list += (list.empty() ? "" : ", ") + k.kind;
-        throw ConfigError(where + ".kind", d.kind, "one of " + list);
-      }
-      std::set<std::string> allowed{"kind", "node", "sign"};
-      allowed.insert(kind->keys.begin(), kind->keys.end());
-      check_keys(v, where, allowed);
-      if (!v["node"]) throw ConfigError(where + ".node", "(missing)", "a node id in [1, 127]");
-      d.node = static_cast<std::uint8_t>(integer(v["node"], where + ".node", 1, 127));
-      if (!nodes.insert(d.node).second)
-        throw ConfigError(where + ".node", std::to_string(d.node),
-                          "a node id no other device of the bench uses");
-      optional(v, "sign", [&](const YAML::Node& x) {
-        const long sign = integer(x, where + ".sign", -1, 1);
-        if (sign == 0) throw ConfigError(where + ".sign", "0", "1 or -1");
-        d.sign = static_cast<int>(sign);
-      });
-      optional(v, "counts_per_turn", [&](const YAML::Node& x) {
-        d.counts_per_turn =
-            static_cast<std::uint32_t>(integer(x, where + ".counts_per_turn", 2, 1L << 31));
-      });
-      optional(v, "turns", [&](const YAML::Node& x) {
-        d.turns = static_cast<std::uint32_t>(integer(x, where + ".turns", 1, 1L << 20));
-      });
-      optional(v, "object", [&](const YAML::Node& x) {
-        parse_object(text(x, where + ".object"), where + ".object", d.torque.index, d.torque.sub);
-      });
-      optional(v, "type", [&](const YAML::Node& x) {
-        const auto t = text(x, where + ".type");
-        const auto type = canopen::parse_value_type(t);
-        if (!type) throw ConfigError(where + ".type", t, "u8, u16, u32, i8, i16, i32, f32 or f64");
-        d.torque.type = *type;
-      });
-      optional(v, "scale", [&](const YAML::Node& x) {
-        d.torque.scale = number(x, where + ".scale", -1e9, 1e9);
-        if (d.torque.scale == 0) throw ConfigError(where + ".scale", "0", "a non-zero scale");
-      });
-      optional(v, "offset", [&](const YAML::Node& x) {
-        d.torque.offset = bounded_quantity(x, Dimension::kTorque, where + ".offset", -1e6, 1e6,
-                                           "a torque in [-1e6, 1e6] N*m");
-      });
-      if (c.devices.size() == storage::kMaxExtraChannels)
-        throw ConfigError("devices", std::to_string(n.size()) + " devices",
-                          "at most " + std::to_string(storage::kMaxExtraChannels));
-      c.devices.push_back(std::move(d));
+void read_channel_devices(YamlSection& root, BenchConfig& c) {
+  auto devices = root.optional_section("devices");
+  if (!devices) return;
+  std::set<int> nodes{c.can.drive_node, c.can.encoder_node, c.can.torque_node};
+  const std::vector<std::string> names = devices->keys();
+  for (const auto& name : names) {
+    try {
+      storage::check_extra_channels(std::vector<storage::ChannelInfo>{{name, "rad"}});
+    } catch (const std::invalid_argument& e) {
+      devices->fail("", name,
+                    "a channel name of [a-z0-9_], 1..31 bytes, not a core channel's (" +
+                        std::string(e.what()) + ")");
     }
-  });
+    if (c.devices.size() == storage::kMaxExtraChannels)
+      devices->fail("", std::to_string(names.size()) + " devices",
+                    "at most " + std::to_string(storage::kMaxExtraChannels));
+    YamlSection v = devices->section(name);
+    c.devices.push_back(read_channel_device(v, name, nodes));
+  }
+  devices->finish();
 }
 
-void read_safety(const YAML::Node& n, SafetyLimits& l) {
-  check_keys(n, "safety",
-             {"max_input_speed", "max_brake_current", "max_brake_torque", "max_measured_torque",
-              "max_following_error", "max_coil_temperature", "max_te_excursion",
-              "heartbeat_timeout", "modbus_link_timeout"});
+void read_safety(YamlSection& s, SafetyLimits& l) {
   // An absent key switches its limit off; a written one must be a limit. A negative or zero
   // value used to mean "off" too, so a sign typo silently disarmed the bench.
   auto read = [&](const char* key, Dimension dim, double& out) {
-    optional(n, key, [&](const YAML::Node& v) {
-      const std::string name = std::string("safety.") + key;
-      out = quantity(v, dim, name);
-      if (!(out > 0)) {
-        throw ConfigError(name, scalar_text(v),
-                          "a limit > 0 (leave the key out to switch this limit off)");
-      }
-    });
+    const auto v = s.optional_quantity(key, dim);
+    if (!v) return;
+    if (!(*v > 0)) {
+      s.fail(key, s.value_text(key), "a limit > 0 (leave the key out to switch this limit off)");
+    }
+    out = *v;
   };
   read("max_input_speed", Dimension::kAngularSpeed, l.max_input_speed_rad_s);
   read("max_brake_current", Dimension::kCurrent, l.max_brake_current_a);
@@ -476,60 +344,51 @@ void read_safety(const YAML::Node& n, SafetyLimits& l) {
   read("max_te_excursion", Dimension::kAngle, l.max_te_excursion_rad);
   read("heartbeat_timeout", Dimension::kTime, l.heartbeat_timeout_s);
   read("modbus_link_timeout", Dimension::kTime, l.modbus_link_timeout_s);
+  s.finish();
 }
 
-void read_simulated(const YAML::Node& n, BenchConfig& c, const std::filesystem::path& base) {
-  check_keys(n, "simulated", {"true_gear", "simbench", "brake_server"});
+void read_true_gear(YamlSection& g, SimulatedSettings& s, const std::filesystem::path& base) {
+  if (const auto v = g.optional_text("case")) s.true_gear_case = resolve(base, *v);
+  set_if(g.optional_number("te_amplitude_scale", 0, 100), s.variation.te_amplitude_scale);
+  set_if(g.optional_quantity_in("te_phase_shift", Dimension::kAngle, -2 * M_PI, 2 * M_PI,
+                                "an angle in [-1 rev, 1 rev]"),
+         s.variation.te_phase_shift_rad);
+  set_if(g.optional_number("stiffness_scale", 1e-3, 1e3), s.variation.stiffness_scale);
+  if (const auto v = g.optional_quantity_in("backlash", Dimension::kAngle, 0, M_PI / 180,
+                                            "an angle in [0, 1 deg]")) {
+    s.variation.backlash_rad = *v;
+  }
+  g.finish();
+}
+
+// `simulated:`, or nothing for an in-process bench without one (all defaults).
+void read_simulated(YamlSection* n, BenchConfig& c, const std::filesystem::path& base) {
   SimulatedSettings s;
   s.true_gear_case =
       std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml";
-  optional(n, "true_gear", [&](const YAML::Node& g) {
-    check_keys(g, "simulated.true_gear",
-               {"case", "te_amplitude_scale", "te_phase_shift", "stiffness_scale", "backlash"});
-    optional(g, "case", [&](const YAML::Node& v) {
-      s.true_gear_case = resolve(base, text(v, "simulated.true_gear.case"));
-    });
-    optional(g, "te_amplitude_scale", [&](const YAML::Node& v) {
-      s.variation.te_amplitude_scale = number(v, "simulated.true_gear.te_amplitude_scale", 0, 100);
-    });
-    optional(g, "te_phase_shift", [&](const YAML::Node& v) {
-      s.variation.te_phase_shift_rad =
-          bounded_quantity(v, Dimension::kAngle, "simulated.true_gear.te_phase_shift", -2 * M_PI,
-                           2 * M_PI, "an angle in [-1 rev, 1 rev]");
-    });
-    optional(g, "stiffness_scale", [&](const YAML::Node& v) {
-      s.variation.stiffness_scale = number(v, "simulated.true_gear.stiffness_scale", 1e-3, 1e3);
-    });
-    optional(g, "backlash", [&](const YAML::Node& v) {
-      s.variation.backlash_rad =
-          bounded_quantity(v, Dimension::kAngle, "simulated.true_gear.backlash", 0, M_PI / 180,
-                           "an angle in [0, 1 deg]");
-    });
-  });
-  optional(n, "brake_server", [&](const YAML::Node& v) {
-    const auto t = text(v, "simulated.brake_server");
-    if (t != "true" && t != "false")
-      throw ConfigError("simulated.brake_server", t, "true or false");
-    s.brake_server = t == "true";
-  });
-  optional(n, "simbench", [&](const YAML::Node& v) {
-    YAML::Node wrapper;
-    wrapper["simbench"] = v;
-    std::ostringstream out;
-    out << wrapper;
-    try {
-      s.devices = std::make_shared<const simdevices::SimulatedBenchConfig>(
-          simdevices::parse_simulated_bench_config(out.str()));
-      if (v.IsMap()) {
-        if (v["drive"] && v["drive"]["node_id"]) s.drive_node = s.devices->drive.node_id;
-        if (v["encoder"] && v["encoder"]["node_id"]) s.encoder_node = s.devices->encoder.node_id;
-        if (v["torque_sensor"] && v["torque_sensor"]["node_id"])
-          s.torque_node = s.devices->torque_sensor.node_id;
-      }
-    } catch (const std::invalid_argument& e) {
-      throw ConfigError("simulated.simbench", scalar_text(v), e.what());
+  if (n) {
+    if (auto g = n->optional_section("true_gear")) read_true_gear(*g, s, base);
+    if (const auto v = n->optional_choice("brake_server", {"true", "false"})) {
+      s.brake_server = *v == "true";
     }
-  });
+    if (auto sb = n->optional_section("simbench")) {
+      // A simulated device sits at can.nodes unless simbench names its node_id (read from a
+      // copy, so the reader below still sees the keys unread).
+      const auto names_node = [&](const char* device) {
+        YamlSection look = *sb;
+        const auto d = look.has_section(device) ? look.optional_section(device) : std::nullopt;
+        return d && d->has("node_id");
+      };
+      const bool drive = names_node("drive"), encoder = names_node("encoder"),
+                 torque = names_node("torque_sensor");
+      s.devices = std::make_shared<const simdevices::SimulatedBenchConfig>(
+          simdevices::read_simulated_bench_section(*sb));
+      if (drive) s.drive_node = s.devices->drive.node_id;
+      if (encoder) s.encoder_node = s.devices->encoder.node_id;
+      if (torque) s.torque_node = s.devices->torque_sensor.node_id;
+    }
+    n->finish();
+  }
   c.simulated = std::move(s);
 }
 
@@ -547,31 +406,24 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
       (std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml").string();
   c.brake.link.endpoint.port = 1502;
   try {
-    const YAML::Node root = config::parse_config_yaml(yaml_text, source);
-    check_keys(
-        root, "",
-        {"name", "unit_serial", "rated_torque", "gear", "sync_period", "clock", "twin_case", "can",
-         "drive", "encoder", "torque_sensor", "devices", "brake", "safety", "simulated"});
+    YamlSection root = strict_yaml::document_section(config::parse_config_yaml(yaml_text, source),
+                                                     source, "a mapping of bench settings");
     read_top(root, c, base_dir);
-    optional(root, "can", [&](const YAML::Node& n) { read_can(n, c.can); });
+    if (auto can = root.optional_section("can")) read_can(*can, c.can);
     read_devices(root, c, base_dir);
-    apply_eds_defaults(root, c);
     read_channel_devices(root, c);
-    optional(root, "brake", [&](const YAML::Node& n) {
-      try {
-        c.brake = modbus::load_brake_config(n);
-      } catch (const modbus::BrakeConfigError& e) {
-        throw ConfigError("brake", scalar_text(n), e.what());
-      }
-    });
-    optional(root, "safety", [&](const YAML::Node& n) { read_safety(n, c.description.limits); });
+    if (auto brake = root.optional_section("brake")) c.brake = modbus::read_brake_config(*brake);
+    if (auto safety = root.optional_section("safety")) read_safety(*safety, c.description.limits);
     if (c.description.limits.modbus_link_timeout_s > 0) {
       c.brake.link.link_loss_timeout =
           std::chrono::milliseconds(std::lround(c.description.limits.modbus_link_timeout_s * 1e3));
     }
-    optional(root, "simulated", [&](const YAML::Node& n) { read_simulated(n, c, base_dir); });
-    if (c.in_process() && !c.simulated)
-      read_simulated(YAML::Node(YAML::NodeType::Map), c, base_dir);
+    if (auto sim = root.optional_section("simulated")) {
+      read_simulated(&*sim, c, base_dir);
+    } else if (c.in_process()) {
+      read_simulated(nullptr, c, base_dir);
+    }
+    root.finish();
 
     auto& d = c.description;
     d.simulated_clock = c.clock == BenchClockKind::kSimulated;

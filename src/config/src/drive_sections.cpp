@@ -43,7 +43,7 @@ model::DcMotorInput parse_dc_motor(YamlSection& s) {
   if (m.back_emf_constant < 0) s.fail("back_emf_constant", "", "a back-EMF constant (required)");
   m.no_load_torque = s.non_negative_quantity_or("no_load_torque", Dimension::kTorque, 0.0);
   if (!s.has("voltage")) s.fail("voltage", "", "the supply voltage (required)");
-  m.voltage = s.sinusoid_or("voltage", Dimension::kVoltage);
+  m.voltage = sinusoid_or(s, "voltage", Dimension::kVoltage);
   return m;
 }
 
@@ -105,7 +105,7 @@ void parse_input_section(YamlSection& s, model::GearParams& gear) {
   if (type == "torque") {
     model::TorqueInput t;
     if (!s.has("torque")) s.fail("torque", "", "the input torque (required)");
-    t.torque = s.sinusoid_or("torque", Dimension::kTorque);
+    t.torque = sinusoid_or(s, "torque", Dimension::kTorque);
     gear.input = t;
   } else if (type == "dc_motor") {
     gear.input = parse_dc_motor(s);
@@ -126,8 +126,8 @@ void parse_input_section(YamlSection& s, model::GearParams& gear) {
 }
 
 void parse_load_section(YamlSection& s, model::LoadParams& load) {
-  load.output_torque = s.sinusoid_or("output_torque", Dimension::kTorque);
-  load.drive_ripple = s.sinusoid_or("drive_ripple", Dimension::kTorque);
+  load.output_torque = sinusoid_or(s, "output_torque", Dimension::kTorque);
+  load.drive_ripple = sinusoid_or(s, "drive_ripple", Dimension::kTorque);
   load.output_drag_coulomb = s.non_negative_quantity_or("output_drag", Dimension::kTorque, 0.0);
   load.drag_smoothing_speed =
       s.non_negative_quantity_or("drag_smoothing_speed", Dimension::kAngularSpeed, 1e-3);

@@ -26,8 +26,8 @@ void parse_gear_section(YamlSection& s, model::GearParams& gear) {
     s.fail(missing, "", "an integer tooth count (z_flex and z_circ come together)");
   }
   if (has_flex) {
-    g.z_flex = s.integer("z_flex");
-    g.z_circ = s.integer("z_circ");
+    g.z_flex = static_cast<int>(s.integer("z_flex", kIntMin, kIntMax));
+    g.z_circ = static_cast<int>(s.integer("z_circ", kIntMin, kIntMax));
     s.require_within("z_flex", g.z_flex, 1, kMaxOrder, "a tooth count");
     s.require_within("z_circ", g.z_circ, 1, kMaxOrder, "a tooth count");
     if (g.z_circ <= g.z_flex) {
@@ -53,9 +53,10 @@ void parse_gear_section(YamlSection& s, model::GearParams& gear) {
     s.fail("ratio", "", "a reduction ratio N > 0, or the tooth counts z_flex and z_circ");
   }
 
-  g.wave_number = s.integer_or("wave_number", has_flex ? g.z_circ - g.z_flex : 2);
+  g.wave_number = static_cast<int>(
+      s.integer_or("wave_number", kIntMin, kIntMax, has_flex ? g.z_circ - g.z_flex : 2));
   s.require_within("wave_number", g.wave_number, 1, 100, "a wave number");
-  g.direction_sign = s.integer_or("direction", 1);
+  g.direction_sign = static_cast<int>(s.integer_or("direction", kIntMin, kIntMax, 1));
   if (g.direction_sign != 1 && g.direction_sign != -1) {
     s.fail("direction", s.value_text("direction"), "+1 or -1");
   }

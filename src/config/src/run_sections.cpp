@@ -60,7 +60,7 @@ void parse_spectrum(YamlSection& s, analysis::SpectrumOptions& o) {
                                        : analysis::Window::kHann;
   o.max_frequency_hz =
       s.non_negative_quantity_or("max_frequency", Dimension::kFrequency, o.max_frequency_hz);
-  o.max_peaks = s.integer_or("max_peaks", o.max_peaks);
+  o.max_peaks = static_cast<int>(s.integer_or("max_peaks", kIntMin, kIntMax, o.max_peaks));
   s.require_within("max_peaks", o.max_peaks, 1, 1000, "a number of peaks");
   o.min_relative_amplitude = s.non_negative_quantity_or(
       "min_relative_amplitude", Dimension::kDimensionless, o.min_relative_amplitude);
@@ -71,7 +71,7 @@ void parse_sweep(YamlSection& s, analysis::SweepOptions& o) {
   o.enabled = s.boolean_or("enabled", true);
   o.from_speed = s.positive_quantity("from", Dimension::kAngularSpeed);
   o.to_speed = s.positive_quantity("to", Dimension::kAngularSpeed);
-  o.steps = s.integer("steps");
+  o.steps = static_cast<int>(s.integer("steps", kIntMin, kIntMax));
   s.require_within("steps", o.steps, 2, 1000, "a number of sweep speeds");
   s.require_within("from", o.from_speed, 0, kMaxSpeedRadS, "a speed [rad/s]");
   s.require_within("to", o.to_speed, 0, kMaxSpeedRadS, "a speed [rad/s]");
@@ -91,7 +91,8 @@ void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis)
   analysis.order_spectrum = s.boolean_or("order_spectrum", analysis.order_spectrum);
   if (auto p = s.optional_section("poincare")) {
     analysis.poincare.excitation_source = p->text_or("excitation_source", "");
-    analysis.poincare.max_clusters = p->integer_or("max_clusters", analysis.poincare.max_clusters);
+    analysis.poincare.max_clusters = static_cast<int>(
+        p->integer_or("max_clusters", kIntMin, kIntMax, analysis.poincare.max_clusters));
     p->require_within("max_clusters", analysis.poincare.max_clusters, 1, 1000,
                       "a number of clusters");
     p->finish();
@@ -105,9 +106,10 @@ void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis)
       se->fail("relative_step", se->value_text("relative_step"), "a fraction > 0");
     }
     se->require_within("relative_step", o.relative_step, 0, 1, "a fraction");
-    o.monte_carlo_runs = se->integer_or("monte_carlo_runs", o.monte_carlo_runs);
+    o.monte_carlo_runs =
+        static_cast<int>(se->integer_or("monte_carlo_runs", kIntMin, kIntMax, o.monte_carlo_runs));
     se->require_within("monte_carlo_runs", o.monte_carlo_runs, 0, 100000, "a number of runs");
-    const int seed = se->integer_or("seed", static_cast<int>(o.seed));
+    const int seed = static_cast<int>(se->integer_or("seed", kIntMin, kIntMax, o.seed));
     if (seed < 0) se->fail("seed", se->value_text("seed"), "an integer >= 0");
     o.seed = static_cast<unsigned>(seed);
     se->finish();

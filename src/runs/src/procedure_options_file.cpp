@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "wavebench/strict_yaml/strict_yaml.hpp"
+#include "wavebench/strict_yaml/yaml_section.hpp"
 
 namespace wavebench::runs {
 
@@ -52,18 +53,14 @@ nlohmann::json to_json(const YAML::Node& n) {
 
 nlohmann::json procedure_options_from_yaml(const std::string& yaml_text,
                                            const std::string& source) {
-  YAML::Node root;
   try {
-    root = strict_yaml::parse_strict_yaml(yaml_text, source);
+    const YAML::Node root = strict_yaml::parse_strict_yaml(yaml_text, source);
+    // The options are checked by their procedure, against its own schema; here only the shape.
+    strict_yaml::document_section(root, source, "a mapping of procedure options");
+    return to_json(root);
   } catch (const strict_yaml::RefusedConfig& e) {
     throw std::invalid_argument(e.what());
   }
-  if (!root.IsMap()) {
-    throw std::invalid_argument(source + ": got a " +
-                                (root.IsSequence() ? std::string("list") : "single value") +
-                                ", expected a mapping of procedure options");
-  }
-  return to_json(root);
 }
 
 nlohmann::json load_procedure_options(const std::filesystem::path& file) {

@@ -1,230 +1,186 @@
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 
-#include <yaml-cpp/yaml.h>
-
-#include <initializer_list>
+#include <cstddef>
 #include <limits>
 #include <numbers>
 #include <stdexcept>
+#include <utility>
 
-#include "wavebench/strict_yaml/strict_yaml.hpp"
+#include "wavebench/strict_yaml/yaml_section.hpp"
 
 namespace wavebench::simdevices {
 namespace {
 
-std::string describe(const YAML::Node& node) {
-  if (node.IsScalar()) return node.Scalar();
-  return node.IsMap() ? "<map>" : node.IsSequence() ? "<list>" : "<null>";
-}
-
-// The message format of every config loader (strict_yaml::RefusedConfig).
-[[noreturn]] void bad(const std::string& key, const std::string& value,
-                      const std::string& expected) {
-  throw std::invalid_argument(
-      strict_yaml::RefusedConfig(key, value, expected, "simbench config").what());
-}
-[[noreturn]] void bad(const std::string& key, const YAML::Node& node, const std::string& expected) {
-  bad(key, describe(node), expected);
-}
-
-// Unknown keys are refused: a misspelt key would otherwise leave its default in place silently.
-void check_keys(const YAML::Node& node, const std::string& section,
-                std::initializer_list<const char*> known) {
-  if (!node.IsMap()) bad(section, node, "a map");
-  for (const auto& kv : node) {
-    const std::string key = kv.first.Scalar();
-    bool found = false;
-    std::string list;
-    for (const char* k : known) {
-      found = found || key == k;
-      list += (list.empty() ? "" : ", ") + std::string(k);
-    }
-    if (!found) bad(section + "." + key, kv.second, "one of the known keys: " + list);
-  }
-}
+using strict_yaml::YamlSection;
 
 template <typename T>
-void read_integer(const YAML::Node& parent, const std::string& section, const char* key, T& out,
-                  long long lo, long long hi) {
-  const YAML::Node n = parent[key];
-  if (!n) return;
-  const std::string name = section + "." + key;
-  long long v = 0;
-  try {
-    v = n.as<long long>();
-  } catch (const YAML::Exception&) {
-    bad(name, n, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  }
-  if (v < lo || v > hi)
-    bad(name, n, "an integer in " + std::to_string(lo) + ".." + std::to_string(hi));
-  out = static_cast<T>(v);
+void set_if(std::optional<long long> v, T& out) {
+  if (v) out = static_cast<T>(*v);
 }
 
-void read_double(const YAML::Node& parent, const std::string& section, const char* key, double& out,
-                 double lo, double hi = std::numeric_limits<double>::max()) {
-  const YAML::Node n = parent[key];
-  if (!n) return;
-  const std::string name = section + "." + key;
-  double v = 0;
-  try {
-    v = n.as<double>();
-  } catch (const YAML::Exception&) {
-    bad(name, n, "a number >= " + std::to_string(lo));
-  }
-  if (!(v >= lo && v <= hi))
-    bad(name, n, "a number in [" + std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  out = v;
+void set_if(std::optional<double> v, double& out) {
+  if (v) out = *v;
 }
 
 // [numerator, denominator] of a factor group object. 0 and values >= 2^31 are taken: they
 // model a drive whose factor group a master must refuse.
-void read_fraction(const YAML::Node& parent, const std::string& section, const char* key,
-                   std::uint32_t& numerator, std::uint32_t& denominator) {
-  const YAML::Node n = parent[key];
-  if (!n) return;
-  const std::string name = section + "." + key;
-  const std::string expected = "[numerator, denominator], two integers in 0..4294967295";
-  if (!n.IsSequence() || n.size() != 2) bad(name, n, expected);
-  long long v[2] = {0, 0};
-  for (std::size_t i = 0; i < 2; ++i) {
-    try {
-      v[i] = n[i].as<long long>();
-    } catch (const YAML::Exception&) {
-      bad(name, n, expected);
-    }
-    if (v[i] < 0 || v[i] > 0xFFFFFFFFLL) bad(name, n, expected);
+void read_fraction(YamlSection& s, const char* key, std::uint32_t& numerator,
+                   std::uint32_t& denominator) {
+  const auto v = s.optional_integer_list(key, 0, 0xFFFFFFFFLL);
+  if (!v) return;
+  if (v->size() != 2) {
+    s.fail(key, s.value_text(key), "[numerator, denominator], two integers in 0..4294967295");
   }
-  numerator = static_cast<std::uint32_t>(v[0]);
-  denominator = static_cast<std::uint32_t>(v[1]);
+  numerator = static_cast<std::uint32_t>((*v)[0]);
+  denominator = static_cast<std::uint32_t>((*v)[1]);
 }
 
-void read_factor_group(const YAML::Node& n, DriveFactorGroupConfig& f) {
-  const std::string s = "simbench.drive.factor_group";
-  check_keys(n, s,
-             {"position_encoder_resolution", "velocity_encoder_resolution", "gear_ratio",
-              "feed_constant"});
-  read_fraction(n, s, "position_encoder_resolution", f.position_encoder_increments,
+void read_factor_group(YamlSection& s, DriveFactorGroupConfig& f) {
+  read_fraction(s, "position_encoder_resolution", f.position_encoder_increments,
                 f.position_encoder_revolutions);
-  read_fraction(n, s, "velocity_encoder_resolution", f.velocity_encoder_increments,
+  read_fraction(s, "velocity_encoder_resolution", f.velocity_encoder_increments,
                 f.velocity_encoder_revolutions);
-  read_fraction(n, s, "gear_ratio", f.gear_motor_revolutions, f.gear_shaft_revolutions);
-  read_fraction(n, s, "feed_constant", f.feed, f.feed_shaft_revolutions);
+  read_fraction(s, "gear_ratio", f.gear_motor_revolutions, f.gear_shaft_revolutions);
+  read_fraction(s, "feed_constant", f.feed, f.feed_shaft_revolutions);
+  s.finish();
 }
 
-void read_drive_units(const YAML::Node& n, ServoDriveConfig& d) {
-  const std::string s = "simbench.drive";
-  if (const YAML::Node u = n["velocity_unit"]) {
-    const std::string v = u.IsScalar() ? u.Scalar() : "";
-    if (v == "counts/s") {
-      d.velocity_unit = DriveVelocityUnit::kCounts;
-    } else if (v == "rpm") {
-      d.velocity_unit = DriveVelocityUnit::kRpm;
-    } else if (v == "0.1 rpm") {
-      d.velocity_unit = DriveVelocityUnit::kDeciRpm;
-    } else if (v == "factor_group") {
-      d.velocity_unit = DriveVelocityUnit::kFactorGroup;
-    } else {
-      bad(s + ".velocity_unit", u, "counts/s, rpm, 0.1 rpm or factor_group");
-    }
+void read_drive_units(YamlSection& s, ServoDriveConfig& d) {
+  if (const auto v =
+          s.optional_choice("velocity_unit", {"counts/s", "rpm", "0.1 rpm", "factor_group"})) {
+    d.velocity_unit = *v == "counts/s"  ? DriveVelocityUnit::kCounts
+                      : *v == "rpm"     ? DriveVelocityUnit::kRpm
+                      : *v == "0.1 rpm" ? DriveVelocityUnit::kDeciRpm
+                                        : DriveVelocityUnit::kFactorGroup;
   }
-  if (const YAML::Node f = n["factor_group"]) read_factor_group(f, d.factor_group);
-  if (const YAML::Node a = n["absent_objects"]) {
-    const std::string expected = "a list of the optional objects \"0x60F4\", \"0x6077\"";
-    if (!a.IsSequence()) bad(s + ".absent_objects", a, expected);
+  if (auto f = s.optional_section("factor_group")) read_factor_group(*f, d.factor_group);
+  if (const auto objects = s.optional_text_list("absent_objects")) {
     d.absent_objects.clear();
-    for (const auto& item : a) {
-      const std::string text = item.IsScalar() ? item.Scalar() : "";
-      std::uint16_t index = 0;
+    for (std::size_t i = 0; i < objects->size(); ++i) {
+      const std::string& text = (*objects)[i];
       if (text == "0x60F4" || text == "0x60f4") {
-        index = 0x60F4;
+        d.absent_objects.push_back(0x60F4);
       } else if (text == "0x6077") {
-        index = 0x6077;
+        d.absent_objects.push_back(0x6077);
       } else {
-        bad(s + ".absent_objects", item, expected);
+        s.fail("absent_objects[" + std::to_string(i) + "]", text,
+               "one of the optional objects \"0x60F4\", \"0x6077\"");
       }
-      d.absent_objects.push_back(index);
     }
   }
 }
 
-void read_drive(const YAML::Node& n, ServoDriveConfig& d) {
-  const std::string s = "simbench.drive";
-  check_keys(n, s,
-             {"node_id", "counts_per_revolution", "rated_torque_nm", "max_torque_permille",
-              "max_motor_speed_rpm", "position_gain", "velocity_gain", "velocity_integral_time_s",
-              "control_period_us", "quick_stop_option", "following_error_window",
-              "following_error_timeout_ms", "serial_number", "velocity_unit", "factor_group",
-              "absent_objects"});
-  read_drive_units(n, d);
-  read_integer(n, s, "node_id", d.node_id, 1, 127);
-  read_integer(n, s, "counts_per_revolution", d.counts_per_revolution, 4, 1LL << 30);
-  read_double(n, s, "rated_torque_nm", d.rated_torque_nm, 1e-3, 1e4);
-  read_integer(n, s, "max_torque_permille", d.max_torque_permille, 1, 65535);
-  read_integer(n, s, "max_motor_speed_rpm", d.max_motor_speed_rpm, 1, 100000);
-  read_double(n, s, "position_gain", d.position_gain, 0, 1e6);
-  read_double(n, s, "velocity_gain", d.velocity_gain, 0, 1e6);
-  read_double(n, s, "velocity_integral_time_s", d.velocity_integral_time, 0, 1e3);
-  double period_us = d.control_period * 1e6;
-  read_double(n, s, "control_period_us", period_us, 10, 10000);
-  d.control_period = period_us * 1e-6;
-  read_integer(n, s, "quick_stop_option", d.quick_stop_option, 0, 8);
-  read_integer(n, s, "following_error_window", d.following_error_window, 0, 0xFFFFFFFFLL);
-  read_integer(n, s, "following_error_timeout_ms", d.following_error_timeout_ms, 0, 65535);
-  read_integer(n, s, "serial_number", d.identity.serial_number, 0, 0xFFFFFFFFLL);
-}
-
-void read_encoder(const YAML::Node& n, EncoderConfig& e,
-                  const std::string& s = "simbench.encoder") {
-  check_keys(n, s,
-             {"node_id", "resolution", "revolutions", "noise_arcsec", "seed", "serial_number"});
-  read_integer(n, s, "node_id", e.node_id, 1, 127);
-  read_integer(n, s, "resolution", e.single_turn_resolution, 2, 1LL << 31);
-  read_integer(n, s, "revolutions", e.revolutions, 1, 65535);
-  double arcsec = e.noise_rad * 180 * 3600 / std::numbers::pi;
-  read_double(n, s, "noise_arcsec", arcsec, 0, 3600);
-  e.noise_rad = arcsec * std::numbers::pi / (180 * 3600);
-  read_integer(n, s, "seed", e.seed, 0, std::numeric_limits<long long>::max());
-  read_integer(n, s, "serial_number", e.identity.serial_number, 0, 0xFFFFFFFFLL);
-}
-
-void read_torque_sensor(const YAML::Node& n, TorqueSensorConfig& t) {
-  const std::string s = "simbench.torque_sensor";
-  check_keys(n, s, {"node_id", "object", "type", "scale", "noise_nm", "offset_nm", "seed"});
-  read_integer(n, s, "node_id", t.node_id, 1, 127);
-  if (const YAML::Node o = n["object"]) {
-    // "0x6130:1" or "0x6130" (sub-index 0)
-    const std::string text = o.IsScalar() ? o.Scalar() : "";
-    try {
-      std::size_t used = 0;
-      const unsigned long index = std::stoul(text, &used, 0);
-      unsigned long sub = 0;
-      if (used < text.size()) {
-        if (text[used] != ':') throw std::invalid_argument("separator");
-        std::size_t used_sub = 0;
-        sub = std::stoul(text.substr(used + 1), &used_sub, 0);
-        if (used + 1 + used_sub != text.size()) throw std::invalid_argument("trailing");
-      }
-      if (index < 0x2000 || index > 0xFFFF || sub > 0xFF) throw std::out_of_range("range");
-      t.index = static_cast<std::uint16_t>(index);
-      t.sub = static_cast<std::uint8_t>(sub);
-    } catch (const std::logic_error&) {
-      bad(s + ".object", o, "INDEX[:SUB] like \"0x6130:1\" with 0x2000 <= INDEX <= 0xFFFF");
-    }
+void read_drive(YamlSection& s, ServoDriveConfig& d) {
+  read_drive_units(s, d);
+  set_if(s.optional_integer("node_id", 1, 127), d.node_id);
+  set_if(s.optional_integer("counts_per_revolution", 4, 1LL << 30), d.counts_per_revolution);
+  set_if(s.optional_number("rated_torque_nm", 1e-3, 1e4), d.rated_torque_nm);
+  set_if(s.optional_integer("max_torque_permille", 1, 65535), d.max_torque_permille);
+  set_if(s.optional_integer("max_motor_speed_rpm", 1, 100000), d.max_motor_speed_rpm);
+  set_if(s.optional_number("position_gain", 0, 1e6), d.position_gain);
+  set_if(s.optional_number("velocity_gain", 0, 1e6), d.velocity_gain);
+  set_if(s.optional_number("velocity_integral_time_s", 0, 1e3), d.velocity_integral_time);
+  if (const auto us = s.optional_number("control_period_us", 10, 10000)) {
+    d.control_period = *us * 1e-6;
   }
-  if (const YAML::Node ty = n["type"]) {
+  set_if(s.optional_integer("quick_stop_option", 0, 8), d.quick_stop_option);
+  set_if(s.optional_integer("following_error_window", 0, 0xFFFFFFFFLL), d.following_error_window);
+  set_if(s.optional_integer("following_error_timeout_ms", 0, 65535), d.following_error_timeout_ms);
+  set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), d.identity.serial_number);
+  s.finish();
+}
+
+void read_encoder(YamlSection& s, EncoderConfig& e) {
+  set_if(s.optional_integer("node_id", 1, 127), e.node_id);
+  set_if(s.optional_integer("resolution", 2, 1LL << 31), e.single_turn_resolution);
+  set_if(s.optional_integer("revolutions", 1, 65535), e.revolutions);
+  if (const auto arcsec = s.optional_number("noise_arcsec", 0, 3600)) {
+    e.noise_rad = *arcsec * std::numbers::pi / (180 * 3600);
+  }
+  set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), e.seed);
+  set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), e.identity.serial_number);
+  s.finish();
+}
+
+// "0x6130:1" or "0x6130" (sub-index 0). Hand-written: the CiA 306 notation has no parser here.
+void read_object(YamlSection& s, TorqueSensorConfig& t) {
+  const auto text = s.optional_text("object");
+  if (!text) return;
+  try {
+    std::size_t used = 0;
+    const unsigned long index = std::stoul(*text, &used, 0);
+    unsigned long sub = 0;
+    if (used < text->size()) {
+      if ((*text)[used] != ':') throw std::invalid_argument("separator");
+      std::size_t used_sub = 0;
+      sub = std::stoul(text->substr(used + 1), &used_sub, 0);
+      if (used + 1 + used_sub != text->size()) throw std::invalid_argument("trailing");
+    }
+    if (index < 0x2000 || index > 0xFFFF || sub > 0xFF) throw std::out_of_range("range");
+    t.index = static_cast<std::uint16_t>(index);
+    t.sub = static_cast<std::uint8_t>(sub);
+  } catch (const std::logic_error&) {
+    s.fail("object", *text, "INDEX[:SUB] like \"0x6130:1\" with 0x2000 <= INDEX <= 0xFFFF");
+  }
+}
+
+void read_torque_sensor(YamlSection& s, TorqueSensorConfig& t) {
+  set_if(s.optional_integer("node_id", 1, 127), t.node_id);
+  read_object(s, t);
+  if (const auto type = s.optional_text("type")) {
     try {
-      t.type = parse_process_value_type(ty.IsScalar() ? ty.Scalar() : "");
+      t.type = parse_process_value_type(*type);
     } catch (const std::invalid_argument&) {
-      bad(s + ".type", ty, "i16, i32 or f32");
+      s.fail("type", *type, "i16, i32 or f32");
     }
   }
-  read_double(n, s, "scale", t.scale_nm_per_unit, 1e-12, 1e6);
-  read_double(n, s, "noise_nm", t.noise_nm, 0, 1e4);
-  read_double(n, s, "offset_nm", t.offset_nm, -1e6, 1e6);
-  read_integer(n, s, "seed", t.seed, 0, std::numeric_limits<long long>::max());
+  set_if(s.optional_number("scale", 1e-12, 1e6), t.scale_nm_per_unit);
+  set_if(s.optional_number("noise_nm", 0, 1e4), t.noise_nm);
+  set_if(s.optional_number("offset_nm", -1e6, 1e6), t.offset_nm);
+  set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), t.seed);
+  s.finish();
 }
 
 }  // namespace
+
+SimulatedBenchConfig read_simulated_bench_section(YamlSection& sb, SimulatedBenchConfig base) {
+  if (const auto c = sb.optional_choice("clock", {"realtime", "sync", "manual"})) {
+    base.clock = *c == "realtime" ? BenchClock::kRealTime
+                 : *c == "sync"   ? BenchClock::kSyncDriven
+                                  : BenchClock::kManual;
+  }
+  if (const auto us = sb.optional_number("sync_period_us", 10, 1e6)) base.sync_period = *us * 1e-6;
+  set_if(sb.optional_number("brake_torque_nm", 0, 1e6), base.brake_torque);
+  if (auto d = sb.optional_section("drive")) read_drive(*d, base.drive);
+  if (auto e = sb.optional_section("encoder")) read_encoder(*e, base.encoder);
+  if (auto t = sb.optional_section("torque_sensor")) read_torque_sensor(*t, base.torque_sensor);
+  if (auto e = sb.optional_section("input_encoder")) {
+    if (!base.input_encoder) {
+      EncoderConfig input;
+      input.node_id = 5;
+      input.identity.device_name = "WB-SIM input encoder";
+      input.identity.product_code = 0x00000A58;
+      input.revolutions = 1;  // single-turn on the fast shaft: it wraps every input turn
+      input.seed = 5;
+      base.input_encoder = input;
+    }
+    read_encoder(*e, *base.input_encoder);
+  }
+  sb.finish();
+  const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
+  if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
+    sb.fail("*.node_id",
+            std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " + std::to_string(ids[2]),
+            "three different node ids");
+  }
+  if (base.input_encoder &&
+      (base.input_encoder->node_id == ids[0] || base.input_encoder->node_id == ids[1] ||
+       base.input_encoder->node_id == ids[2])) {
+    sb.fail("input_encoder.node_id", std::to_string(base.input_encoder->node_id),
+            "a node id no other simulated device uses");
+  }
+  return base;
+}
 
 DataType parse_process_value_type(const std::string& text) {
   if (text == "i16" || text == "int16") return DataType::kInteger16;
@@ -241,63 +197,15 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
 SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
                                                   const std::string& source,
                                                   SimulatedBenchConfig base) {
-  YAML::Node root;
   try {
-    root = strict_yaml::parse_strict_yaml(yaml_text, source);
+    YamlSection root = strict_yaml::document_section(
+        strict_yaml::parse_strict_yaml(yaml_text, source), source, "a map with a simbench section");
+    // Other top-level keys are the business of whoever else reads the file.
+    auto sb = root.optional_section("simbench");
+    return sb ? read_simulated_bench_section(*sb, std::move(base)) : base;
   } catch (const strict_yaml::RefusedConfig& e) {
     throw std::invalid_argument(e.what());
   }
-  if (!root.IsMap()) bad("(document)", root, "a map with a simbench section");
-  const YAML::Node sb = root["simbench"];
-  if (!sb) return base;
-  check_keys(sb, "simbench",
-             {"clock", "sync_period_us", "brake_torque_nm", "drive", "encoder", "torque_sensor",
-              "input_encoder"});
-  if (const YAML::Node c = sb["clock"]) {
-    const std::string v = c.IsScalar() ? c.Scalar() : "";
-    if (v == "realtime") {
-      base.clock = BenchClock::kRealTime;
-    } else if (v == "sync") {
-      base.clock = BenchClock::kSyncDriven;
-    } else if (v == "manual") {
-      base.clock = BenchClock::kManual;
-    } else {
-      bad("simbench.clock", c, "realtime, sync or manual");
-    }
-  }
-  double sync_us = base.sync_period * 1e6;
-  read_double(sb, "simbench", "sync_period_us", sync_us, 10, 1e6);
-  base.sync_period = sync_us * 1e-6;
-  read_double(sb, "simbench", "brake_torque_nm", base.brake_torque, 0, 1e6);
-  if (const YAML::Node d = sb["drive"]) read_drive(d, base.drive);
-  if (const YAML::Node e = sb["encoder"]) read_encoder(e, base.encoder);
-  if (const YAML::Node t = sb["torque_sensor"]) read_torque_sensor(t, base.torque_sensor);
-  if (const YAML::Node e = sb["input_encoder"]) {
-    if (!base.input_encoder) {
-      EncoderConfig input;
-      input.node_id = 5;
-      input.identity.device_name = "WB-SIM input encoder";
-      input.identity.product_code = 0x00000A58;
-      input.revolutions = 1;  // single-turn on the fast shaft: it wraps every input turn
-      input.seed = 5;
-      base.input_encoder = input;
-    }
-    read_encoder(e, *base.input_encoder, "simbench.input_encoder");
-  }
-  const std::uint8_t ids[] = {base.drive.node_id, base.encoder.node_id, base.torque_sensor.node_id};
-  if (ids[0] == ids[1] || ids[0] == ids[2] || ids[1] == ids[2]) {
-    bad("simbench.*.node_id",
-        std::to_string(ids[0]) + ", " + std::to_string(ids[1]) + ", " + std::to_string(ids[2]),
-        "three different node ids");
-  }
-  if (base.input_encoder &&
-      (base.input_encoder->node_id == ids[0] || base.input_encoder->node_id == ids[1] ||
-       base.input_encoder->node_id == ids[2])) {
-    throw std::invalid_argument(
-        "simbench.input_encoder.node_id: " + std::to_string(base.input_encoder->node_id) +
-        " (expected a node id no other simulated device uses)");
-  }
-  return base;
 }
 
 SimulatedBenchConfig load_simulated_bench_config(const std::filesystem::path& path,

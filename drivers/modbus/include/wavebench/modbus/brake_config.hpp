@@ -10,10 +10,7 @@
 
 #include "wavebench/modbus/modbus_endpoint.hpp"
 #include "wavebench/modbus/register_map.hpp"
-
-namespace YAML {
-class Node;
-}
+#include "wavebench/strict_yaml/yaml_section.hpp"
 
 namespace wavebench::modbus {
 
@@ -47,14 +44,19 @@ struct BrakeClientConfig {
   BrakeRegisterMap map;
 };
 
-// Bad config: the message names the key, the value and what was expected.
-class BrakeConfigError : public std::runtime_error {
+// Bad config: the one refusal of every loader (source, key path, value, what was expected).
+class BrakeConfigError : public strict_yaml::RefusedConfig {
  public:
-  using std::runtime_error::runtime_error;
+  explicit BrakeConfigError(const strict_yaml::RefusedConfig& refusal)
+      : strict_yaml::RefusedConfig(refusal) {}
 };
 
-// `node` is the brake section (keys link, timeouts, reconnect, heartbeat, limits, map); missing
-// keys keep their defaults, unknown keys are errors.
+// The brake section (keys link, timeouts, reconnect, heartbeat, limits, map); missing keys keep
+// their defaults, unknown keys are refused (strict_yaml::RefusedConfig, with the section's key
+// path, so a bench config names "brake.link.port").
+BrakeClientConfig read_brake_config(strict_yaml::YamlSection& section);
+// The same for a node read elsewhere (source "brake config"); null = all defaults. Throws
+// BrakeConfigError.
 BrakeClientConfig load_brake_config(const YAML::Node& node);
 // The file's top-level `brake:` section, or the whole file if it has none.
 BrakeClientConfig load_brake_config_file(const std::filesystem::path& path);

@@ -17,16 +17,20 @@ inline constexpr std::size_t kMaxConfigBytes = 1 << 20;  // the largest shipped 
 inline constexpr int kMaxDepth = 32;                     // shipped configs nest 4 deep
 inline constexpr std::size_t kMaxNodeVisits = 200000;
 
-// A config refused before its keys are read. what() is "source: key: got 'value', expected
-// ...", the format of config::ConfigError, so loaders can pass it on as their own error type.
+// A config that cannot be used, refused by the file checks, the parser or a YamlSection (the
+// one error type of every config loader; config::ConfigError is this type). what() is
+// "source: key: got 'value', expected ...", so a user can fix the file without the code.
 class RefusedConfig : public std::runtime_error {
  public:
-  RefusedConfig(std::string key, std::string value, std::string expected, std::string source);
+  RefusedConfig(std::string key, std::string value, std::string expected, std::string source = {});
 
   const std::string& key() const noexcept { return key_; }  // "(document)" when no key applies
   const std::string& value() const noexcept { return value_; }
   const std::string& expected() const noexcept { return expected_; }
   const std::string& source() const noexcept { return source_; }
+
+  // The same refusal attributed to a file.
+  RefusedConfig with_source(const std::string& source) const;
 
  private:
   std::string key_, value_, expected_, source_;

@@ -1,26 +1,12 @@
 #pragma once
-// A config that cannot be used. The message names the key path, the offending value and what
-// was expected, so a user can fix the file without reading the code.
+// A config that cannot be used: the one refusal type of every loader (strict_yaml), named here
+// for the loaders in src/. The message names the key path, the offending value and what was
+// expected, so a user can fix the file without reading the code.
 
-#include <stdexcept>
-#include <string>
+#include "wavebench/strict_yaml/strict_yaml.hpp"
 
 namespace wavebench::config {
 
-class ConfigError : public std::runtime_error {
- public:
-  ConfigError(std::string key, std::string value, std::string expected, std::string source = {});
-
-  const std::string& key() const noexcept { return key_; }      // e.g. "stiffness.k0"
-  const std::string& value() const noexcept { return value_; }  // as written in the file
-  const std::string& expected() const noexcept { return expected_; }
-  const std::string& source() const noexcept { return source_; }  // file name, if known
-
-  // The same error attributed to a file.
-  ConfigError with_source(const std::string& source) const;
-
- private:
-  std::string key_, value_, expected_, source_;
-};
+using ConfigError = strict_yaml::RefusedConfig;
 
 }  // namespace wavebench::config

@@ -1,6 +1,6 @@
 #pragma once
 // The strict YAML checks of drivers/strict_yaml (size, UTF-8, not empty, nesting, duplicate
-// keys) for the loaders in src/, with their refusals as ConfigError.
+// keys) for the loaders in src/; their refusals are ConfigError (= strict_yaml::RefusedConfig).
 
 #include <yaml-cpp/yaml.h>
 

@@ -38,6 +38,10 @@
 
 #include "wavebench/simdevices/simulated_bench.hpp"
 
+namespace wavebench::strict_yaml {
+class YamlSection;
+}
+
 namespace wavebench::simdevices {
 
 // Throws std::invalid_argument naming the key, the value and what was expected; unknown keys
@@ -51,6 +55,10 @@ SimulatedBenchConfig parse_simulated_bench_config(const std::string& yaml_text,
                                                   SimulatedBenchConfig base);
 SimulatedBenchConfig load_simulated_bench_config(const std::filesystem::path& path,
                                                  SimulatedBenchConfig base = {});
+// The `simbench:` section itself, for a config that holds one (a bench config's
+// `simulated.simbench`); throws strict_yaml::RefusedConfig with the section's key paths.
+SimulatedBenchConfig read_simulated_bench_section(strict_yaml::YamlSection& simbench,
+                                                  SimulatedBenchConfig base = {});
 
 // "i16", "i32", "f32" (also "int16", "int32", "real32").
 DataType parse_process_value_type(const std::string& text);

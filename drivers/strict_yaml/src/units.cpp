@@ -1,4 +1,4 @@
-#include "wavebench/config/units.hpp"
+#include "wavebench/strict_yaml/units.hpp"
 
 #include <charconv>
 #include <cmath>
@@ -6,9 +6,9 @@
 #include <optional>
 #include <utility>
 
-#include "wavebench/config/config_error.hpp"
+#include "wavebench/strict_yaml/strict_yaml.hpp"
 
-namespace wavebench::config {
+namespace wavebench::strict_yaml {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
@@ -183,12 +183,13 @@ std::vector<std::string> accepted_units(Dimension dimension) {
 
 double checked_si(double value, const std::string& key) {
   if (!std::isfinite(value)) {
-    throw ConfigError(key, std::to_string(value), "a finite number");
+    throw RefusedConfig(key, std::to_string(value), "a finite number");
   }
   return value;
 }
 
-double parse_quantity(std::string_view text, Dimension dimension, const std::string& key) {
+double parse_quantity(std::string_view text, Dimension dimension, const std::string& key,
+                      const std::string& source) {
   const std::string s = trim(text);
   const std::string value_text(text);
   // from_chars does not accept a leading '+'.
@@ -196,27 +197,28 @@ double parse_quantity(std::string_view text, Dimension dimension, const std::str
   double number = 0;
   const auto [ptr, ec] = std::from_chars(s.data() + start, s.data() + s.size(), number);
   if (ec != std::errc() || ptr == s.data() + start) {
-    throw ConfigError(key, value_text,
-                      "a number followed by an optional unit: " + describe(dimension));
+    throw RefusedConfig(key, value_text,
+                        "a number followed by an optional unit: " + describe(dimension), source);
   }
-  if (!std::isfinite(number)) throw ConfigError(key, value_text, "a finite number");
+  if (!std::isfinite(number)) throw RefusedConfig(key, value_text, "a finite number", source);
   const std::string unit = normalise_unit(trim(std::string_view(ptr, s.data() + s.size() - ptr)));
   if (unit.empty()) return number;  // a bare number is SI, quoted or not
   const auto& expected = info(dimension);
   if (const auto u = find_unit(expected, unit)) {
     const double si = u->factor * number + u->offset;
-    if (!std::isfinite(si)) throw ConfigError(key, value_text, "a finite number");
+    if (!std::isfinite(si)) throw RefusedConfig(key, value_text, "a finite number", source);
     return si;
   }
   // Say what the unit is, if it is one at all: "N*m is a torque" is the useful hint.
   for (const auto& other : table()) {
     if (other.dimension == dimension) continue;
     if (find_unit(other, unit)) {
-      throw ConfigError(key, value_text,
-                        describe(dimension) + ", but '" + unit + "' is " + other.label);
+      throw RefusedConfig(key, value_text,
+                          describe(dimension) + ", but '" + unit + "' is " + other.label, source);
     }
   }
-  throw ConfigError(key, value_text, describe(dimension) + "; unknown unit '" + unit + "'");
+  throw RefusedConfig(key, value_text, describe(dimension) + "; unknown unit '" + unit + "'",
+                      source);
 }
 
-}  // namespace wavebench::config
+}  // namespace wavebench::strict_yaml
