@@ -8,12 +8,8 @@ namespace wavebench::modbus {
 
 namespace {
 
+using strict_yaml::set_if;
 using strict_yaml::YamlSection;
-
-template <typename T>
-void set_if(std::optional<long long> v, T& out) {
-  if (v) out = static_cast<T>(*v);
-}
 
 void set_ms_if(std::optional<long long> v, std::chrono::milliseconds& out) {
   if (v) out = std::chrono::milliseconds(*v);

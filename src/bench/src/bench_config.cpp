@@ -22,16 +22,8 @@ namespace {
 
 using config::ConfigError;
 using config::Dimension;
+using strict_yaml::set_if;
 using strict_yaml::YamlSection;
-
-template <typename T>
-void set_if(std::optional<long long> v, T& out) {
-  if (v) out = static_cast<T>(*v);
-}
-
-void set_if(std::optional<double> v, double& out) {
-  if (v) out = *v;
-}
 
 // Names and serials go into run folders, the runs index and report titles: one short line.
 void read_label(YamlSection& s, const char* key, std::string& out) {

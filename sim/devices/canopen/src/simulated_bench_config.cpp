@@ -11,16 +11,8 @@
 namespace wavebench::simdevices {
 namespace {
 
+using strict_yaml::set_if;
 using strict_yaml::YamlSection;
-
-template <typename T>
-void set_if(std::optional<long long> v, T& out) {
-  if (v) out = static_cast<T>(*v);
-}
-
-void set_if(std::optional<double> v, double& out) {
-  if (v) out = *v;
-}
 
 // [numerator, denominator] of a factor group object. 0 and values >= 2^31 are taken: they
 // model a drive whose factor group a master must refuse.

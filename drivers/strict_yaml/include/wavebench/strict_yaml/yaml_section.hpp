@@ -109,4 +109,14 @@ class YamlSection {
 YamlSection document_section(const YAML::Node& root, const std::string& source,
                              const std::string& expected = "a mapping of keys to values");
 
+// Stores an optional getter's value where the key was given, converted to the field's type
+// (the getter has already checked its range); leaves the default otherwise.
+template <typename T>
+void set_if(const std::optional<long long>& v, T& out) {
+  if (v) out = static_cast<T>(*v);
+}
+inline void set_if(const std::optional<double>& v, double& out) {
+  if (v) out = *v;
+}
+
 }  // namespace wavebench::strict_yaml
