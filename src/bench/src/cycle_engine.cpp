@@ -35,10 +35,12 @@ void CycleEngine::attach(std::vector<CanopenDevice*> canopen_devices,
   }
   expected_ = sources_.empty() ? 0 : static_cast<std::uint32_t>((1ULL << sources_.size()) - 1);
   // Indices, not pointers: sources_ is final here, but a handler outliving it must not dangle.
-  for (const auto& [cob_id, i] : cob_ids)
-    master_.on_pdo(cob_id, [this, i](const can::Frame& f) {
+  for (const auto& entry : cob_ids) {
+    const std::size_t i = entry.second;  // a copy: clang 14 cannot capture a structured binding
+    master_.on_pdo(entry.first, [this, i](const can::Frame& f) {
       if (i < sources_.size()) on_frame(sources_[i], f);
     });
+  }
 }
 
 void CycleEngine::start(CycleCheck check) {
