@@ -190,6 +190,15 @@ TEST(TwinCaseSchema, OldBrakeKeysAreRefusedNamingTheirReplacement) {
   EXPECT_NE(f.find("hysteresis"), std::string::npos) << f;
   const std::string t = refused(R"({rated_torque: 40, rated_current: 2, tau_rise: 0})");
   EXPECT_NE(t.find("load.brake.tau_rise"), std::string::npos) << t;
+  // Hostile values that would keep the twin integrating for ever, or make no brake.
+  const std::string tiny = refused(R"({rated_torque: 40, rated_current: 2, tau_fall: "1 ns"})");
+  EXPECT_NE(tiny.find("load.brake.tau_fall"), std::string::npos) << tiny;
+  const std::string wide = refused(R"({rated_torque: 40, rated_current: 2, hysteresis: "3 A"})");
+  EXPECT_NE(wide.find("load.brake.hysteresis"), std::string::npos) << wide;
+  const std::string still =
+      refused(R"({rated_torque: 40, rated_current: 2, standstill_speed: "1e6 rad/s"})");
+  EXPECT_NE(still.find("load.brake.standstill_speed"), std::string::npos) << still;
+  EXPECT_EQ(refused(R"({rated_torque: 40, rated_current: 2, tau_fall: "0.2 s"})"), "accepted");
 }
 
 TEST(TwinCaseSchema, DampingRatioAndCoefficientTogetherIsAnError) {

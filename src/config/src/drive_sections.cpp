@@ -163,6 +163,12 @@ void parse_load_section(YamlSection& s, model::LoadParams& load) {
     p.tau_fall_s = positive_or("tau_fall", Dimension::kTime, p.tau_rise_s);
     load.brake_current_a = b->non_negative_quantity_or("current", Dimension::kCurrent, 0.0);
     p.standstill_rad_per_s = positive_or("standstill_speed", Dimension::kAngularSpeed, 1e-3);
+    // Bounds that keep the twin's integration finite: a lag far below the integrator's step, or
+    // a hysteresis wider than the whole current range, is a typo, not a brake.
+    b->require_within("tau_rise", p.tau_rise_s, 1e-4, 100, "a lag time constant in s");
+    b->require_within("tau_fall", p.tau_fall_s, 1e-4, 100, "a lag time constant in s");
+    b->require_within("standstill_speed", p.standstill_rad_per_s, 1e-9, 10,
+                      "a standstill speed in rad/s");
     p.heat_capacity_j_per_k =
         b->non_negative_quantity_or("thermal_capacity", Dimension::kHeatCapacity, 0);
     const double resistance =
@@ -173,6 +179,8 @@ void parse_load_section(YamlSection& s, model::LoadParams& load) {
     }
     p.heat_loss_w_per_k = resistance > 0 ? 1 / resistance : 0;
     p.ambient_c = b->quantity_or("ambient_temperature", Dimension::kTemperature, 25.0);
+    b->require_within("hysteresis", p.hysteresis_a, 0, p.rated_current_a,
+                      "a hysteresis width in A, at most rated_current");
     if (p.rated_current_a <= p.threshold_current_a) {
       b->fail("rated_current", b->value_text("rated_current"),
               "a current above threshold_current " + b->value_text("threshold_current"));
