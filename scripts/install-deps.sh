@@ -10,6 +10,7 @@ packages=(
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang libclang-rt-14-dev
   can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
+  python3-jsonschema
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   packages+=(qemu-system-x86 busybox-static cpio kmod)

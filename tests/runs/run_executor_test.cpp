@@ -69,6 +69,7 @@ TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
 
   std::ifstream in(store_->paths(out.run_id).results);
   const auto results = nlohmann::json::parse(in);
+  EXPECT_EQ(results["schema"], kResultsSchema);
   ASSERT_EQ(results["static"].size(), 4u);
   EXPECT_EQ(results["static"][0]["points"].size(), 4u);
   EXPECT_EQ(results["acquisition"]["samples_logged"], log.samples.size());

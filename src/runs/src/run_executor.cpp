@@ -123,6 +123,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
   };
 
   nlohmann::json results = {
+      {"schema", kResultsSchema},
       {"run_id", outcome.run_id},
       {"procedure", request.procedure},
       {"unit_serial", description.unit_serial},

@@ -16,6 +16,10 @@
 
 namespace wavebench::runs {
 
+// results.json "schema": its format and major version (docs/formats/results.schema.json).
+// Adding a key keeps it; removing, renaming or changing the meaning of one bumps the number.
+inline constexpr const char* kResultsSchema = "wavebench.results/1";
+
 struct RunRequest {
   std::string procedure;  // "static", "dynamic" or "lost-motion"
   // Procedure options (e.g. {"positions": 24, "loads_nm": [0, 60]} for static); missing keys

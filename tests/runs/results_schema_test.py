@@ -1,0 +1,146 @@
+"""results.json of every procedure, as `wavebench run` writes it on the in-process simulated
+bench, against docs/formats/results.schema.json, checked by an independent validator
+(Debian's python3-jsonschema). A results.json with a wrong type, a missing required key or an
+unknown key must be refused, so that the check itself can fail.
+
+Usage: /usr/bin/python3 results_schema_test.py WAVEBENCH_CLI SOURCE_DIR WORK_DIR
+"""
+
+import copy
+import json
+import shutil
+import subprocess
+import sys
+from pathlib import Path
+
+try:
+    import jsonschema
+except ImportError:
+    sys.exit(
+        "results_schema_test: FAIL: this Python (" + sys.executable + ") has no jsonschema module;"
+        " install Debian's python3-jsonschema (scripts/install-deps.sh) and run it with /usr/bin/python3"
+    )
+
+
+def errors_of(validator, instance):
+    return sorted(
+        ("/".join(str(p) for p in e.absolute_path) or "(top)") + ": " + e.message
+        for e in validator.iter_errors(instance)
+    )
+
+
+def main():
+    cli, source, work = sys.argv[1], Path(sys.argv[2]), Path(sys.argv[3])
+    schema = json.loads((source / "docs/formats/results.schema.json").read_text())
+    jsonschema.Draft202012Validator.check_schema(schema)
+    validator = jsonschema.Draft202012Validator(schema)
+    shutil.rmtree(work, ignore_errors=True)
+    work.mkdir(parents=True)
+
+    sim = "sim"
+    encoder = str(source / "configs/benches/sim-input-encoder.yaml")
+    cases = {
+        "static, 4 positions, a limit": (sim, ["static", "--positions", "4", "--loads", "0,30", "--window", "0.1",
+                                              "--no-twin", "--limit", "static_p2p_arcmin=100"]),
+        "static with an extra channel": (encoder, ["static", "--positions", "4", "--loads", "0", "--window", "0.1",
+                                                  "--no-twin"]),
+        "static with the twin, its calibration and the report": (sim, ["static", "--positions", "4", "--loads",
+                                                                       "0,30", "--window", "0.1", "--report"]),
+        "dynamic, short, with the twin": (sim, ["dynamic", "--rpm", "600", "--revolutions", "1",
+                                                "--option", "run_in_s=0.2", "--no-calibration",
+                                                "--limit", "dynamic_rms_arcsec=1000"]),
+        "lost motion": (sim, ["lost-motion", "--torques", "5,10,20,40", "--no-twin",
+                              "--limit", "lost_motion_arcmin=100"]),
+    }
+    failed = False
+    produced = {}
+    for name, (bench, args) in cases.items():
+        report = "--report" in args
+        args = [a for a in args if a != "--report"] + ([] if report else ["--no-report"])
+        cmd = [cli, "run", *args, "--bench", bench, "--out", str(work / "runs"), "--quiet"]
+        done = subprocess.run(cmd, capture_output=True, text=True, timeout=900)
+        if done.returncode != 0:
+            print("FAIL", name + ":", " ".join(cmd), "exited", done.returncode, "\n" + done.stdout + done.stderr)
+            failed = True
+            continue
+        paths = [l[len("results: "):] for l in done.stdout.splitlines() if l.startswith("results: ")]
+        if not paths:
+            print("FAIL", name + ": no 'results: ' line in\n" + done.stdout)
+            failed = True
+            continue
+        results = json.loads(Path(paths[0]).read_text())
+        produced[name] = results
+        errors = errors_of(validator, results)
+        if errors:
+            print("FAIL", name + ":", paths[0], "does not match the schema:\n  " + "\n  ".join(errors))
+            failed = True
+        else:
+            print("ok  ", name + ":", results["procedure"], results["status"], "sections:",
+                  ",".join(sorted(results)))
+
+    # What the cases are there for actually appears in them (so that a schema that merely
+    # allows a section is exercised on it).
+    expected_sections = {
+        "static, 4 positions, a limit": ["static", "lost_motion", "load_shift", "limit_checks", "acquisition"],
+        "static with an extra channel": ["extra_channels"],
+        "static with the twin, its calibration and the report": ["twin", "report"],
+        "dynamic, short, with the twin": ["dynamic", "twin", "limit_checks"],
+        "lost motion": ["lost_motion_fit", "limit_checks"],
+    }
+    for name, keys in expected_sections.items():
+        missing = [k for k in keys if name in produced and k not in produced[name]]
+        if missing:
+            print("FAIL", name + ": expected sections missing:", missing)
+            failed = True
+    for name in ("static with the twin, its calibration and the report", "dynamic, short, with the twin"):
+        twin = produced.get(name, {}).get("twin", {})
+        if "error" in twin or "residual" not in twin:
+            print("FAIL", name + ": the twin did not run through:", json.dumps(twin)[:300])
+            failed = True
+    twin = produced.get("static with the twin, its calibration and the report", {}).get("twin", {})
+    if "calibration" not in twin:
+        print("FAIL static with the twin: no twin.calibration")
+        failed = True
+
+    # The validator must refuse what breaks the schema.
+    base = produced.get("static, 4 positions, a limit")
+    if base is None:
+        print("FAIL no static results to break")
+        sys.exit(1)
+    broken = {}
+    b = copy.deepcopy(base); b["static"][0]["p2p_arcmin"] = "big"; broken["p2p as text"] = b
+    b = copy.deepcopy(base); del b["status"]; broken["status missing"] = b
+    b = copy.deepcopy(base); b["colour"] = "blue"; broken["unknown top-level key"] = b
+    b = copy.deepcopy(base); b["options"]["positions"] = "4"; broken["positions as text"] = b
+    b = copy.deepcopy(base); b["schema"] = "wavebench.results/2"; broken["another major version"] = b
+    b = copy.deepcopy(base); del b["static"]; broken["complete static run without its passes"] = b
+    b = copy.deepcopy(base); b["acquisition"]["log_queue_dropped"] = -1; broken["negative count"] = b
+    b = copy.deepcopy(base); b["status"] = "aborted"; broken["aborted without a reason"] = b
+    for name, instance in broken.items():
+        if validator.is_valid(instance):
+            print("FAIL the schema accepts a results.json with", name)
+            failed = True
+        else:
+            print("ok   refused:", name)
+    # An aborted run has no procedure section, no verdict and a reason (the shape execute_run
+    # writes after a trip; the simulated bench does not trip on request from the command line).
+    if "lost motion" in produced:
+        aborted = copy.deepcopy(produced["lost motion"])
+        for key in ("lost_motion_fit", "limit_checks", "pass"):
+            del aborted[key]
+        aborted.update(status="aborted", reason="over-torque: 151 N*m > 150 N*m")
+        errors = errors_of(validator, aborted)
+        if errors:
+            print("FAIL an aborted run's shape is refused:\n  " + "\n  ".join(errors))
+            failed = True
+        else:
+            print("ok   accepted: an aborted lost-motion run")
+
+    if failed:
+        sys.exit(1)
+    shutil.rmtree(work, ignore_errors=True)
+    print("results_schema_test: every results.json matches", schema["properties"]["schema"]["const"])
+
+
+if __name__ == "__main__":
+    main()
