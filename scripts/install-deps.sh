@@ -11,6 +11,7 @@ packages=(
   clang libclang-rt-14-dev
   can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
   python3-jsonschema
+  chromium chromium-driver python3-selenium
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   packages+=(qemu-system-x86 busybox-static cpio kmod)
@@ -20,7 +21,22 @@ missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
 done
+command -v npm >/dev/null || missing+=(npm)
+
+install_front_end() {
+  # The console's libraries (web/package.json), exactly as web/package-lock.json pins them.
+  # Only when the lockfile changed since the last install: nothing is fetched otherwise.
+  local root
+  root="$(cd "$(dirname "$0")/.." && pwd)"
+  if [[ ! -f "$root/web/node_modules/.package-lock.json" ||
+        "$root/web/package-lock.json" -nt "$root/web/node_modules/.package-lock.json" ]]; then
+    echo "install-deps: npm ci --prefix web"
+    npm ci --prefix "$root/web" --no-audit --no-fund --loglevel=error >/dev/null
+  fi
+}
+
 if ((${#missing[@]} == 0)); then
+  install_front_end
   exit 0
 fi
 
@@ -33,3 +49,4 @@ echo "install-deps: installing ${missing[*]}"
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+install_front_end

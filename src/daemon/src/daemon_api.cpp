@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/console_files.hpp"
 #include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
@@ -104,13 +105,15 @@ std::string response_text(const ApiResponse& response) {
 }
 
 DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
-                     std::string token, HostCheck host_check)
+                     std::string token, HostCheck host_check,
+                     std::shared_ptr<const ConsoleFiles> console)
     : bench_(bench),
       store_(store),
       live_(live),
       token_(std::move(token)),
       host_check_(std::move(host_check)),
-      reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)) {}
+      reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)),
+      console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()) {}
 
 ApiResponse DaemonApi::costly(const std::function<ApiResponse()>& read) const {
   auto answer = reads_->run(read);
@@ -159,10 +162,14 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     }
   }
   const auto& seg = target.segments;
-  if (seg.empty() || seg[0] != "api") {
-    return api_error(404, "not found", "no resource at " + target.path);
-  }
   const bool get = request.method == "GET";
+  if (seg.empty() || seg[0] != "api") {
+    if (!get) {
+      return api_error(405, "method not allowed",
+                       request.method + " " + target.path + "; expected GET");
+    }
+    return console_->answer(target);
+  }
   const bool post = request.method == "POST";
   const auto method_not_allowed = [&](const char* allowed) {
     return api_error(405, "method not allowed",

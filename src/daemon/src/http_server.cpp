@@ -91,9 +91,12 @@ class Session : public std::enable_shared_from_this<Session> {
     auto message = std::make_shared<http::response<http::string_body>>(
         static_cast<http::status>(response.status), version);
     message->set(http::field::server, "wavebenchd");
-    message->set(http::field::content_type, "application/json");
+    message->set(http::field::content_type, response.content_type);
+    message->set("X-Content-Type-Options", "nosniff");
+    for (const auto& [name, value] : response.headers) message->set(name, value);
     message->keep_alive(keep_alive);
-    message->body() = response_text(response) + "\n";
+    message->body() =
+        response.raw_body ? std::move(*response.raw_body) : response_text(response) + "\n";
     message->prepare_payload();
     http::async_write(stream_, *message,
                       [self = shared_from_this(), message](beast::error_code ec, std::size_t) {

@@ -16,6 +16,7 @@
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/daemon/api_token.hpp"
 #include "wavebench/daemon/async_logging.hpp"
+#include "wavebench/daemon/console_files.hpp"
 #include "wavebench/daemon/daemon.hpp"
 #include "wavebench/daemon/daemon_logging.hpp"
 #include "wavebench/daemon/daemon_options.hpp"
@@ -72,6 +73,12 @@ int run(const daemon::DaemonOptions& options) {
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;
   setup.config_text = config.text;
+  setup.console_root = options.web_root.empty() ? daemon::default_console_root() : options.web_root;
+  if (setup.console_root.empty()) {
+    spdlog::warn("no console files found (--web-root): the API is served, the console is not");
+  } else {
+    spdlog::info("console from {}", setup.console_root.string());
+  }
 
   boost::asio::io_context signals_io;
   boost::asio::signal_set signals(signals_io, SIGINT, SIGTERM);
@@ -131,6 +138,11 @@ int main(int argc, char** argv) {
                  "token for requests that move hardware (created 0600 if missing; default "
                  "$WAVEBENCH_TOKEN_FILE or ~/.config/wavebench/daemon.token)");
   app.add_option("--log-dir", log_dir, "rotating log folder (default RUNS/logs)");
+  std::string web_root;
+  app.add_option("--web-root", web_root,
+                 "the console's files (default $WAVEBENCH_WEB_DIR, the installed ones, or the "
+                 "build tree's web/)")
+      ->check(CLI::ExistingDirectory);
   app.add_flag("--verbose", options.verbose, "debug logging");
   app.add_flag("--allow-remote", options.allow_remote,
                "allow --listen on an address other machines can reach (logged as a warning)");
@@ -161,6 +173,7 @@ int main(int argc, char** argv) {
   options.runs_dir = runs_dir;
   options.token_file = token_file;
   options.log_dir = log_dir;
+  options.web_root = web_root;
   int rc = 1;
   try {
     rc = run(options);

@@ -36,6 +36,7 @@ struct DaemonSetup {
   int api_threads = 6;
   std::vector<std::string> allowed_hosts;  // Host names beside IP literals and localhost
   std::size_t live_capacity = 8192;
+  std::filesystem::path console_root;  // the console's files; empty: no console
 };
 
 class Daemon {

@@ -13,6 +13,7 @@
 //                                             page_gaps counts gaps within it)
 //   GET  /api/live?since=&limit=              latest samples
 //   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
+//   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
 //
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
@@ -23,7 +24,10 @@
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "wavebench/daemon/bench_thread.hpp"
 #include "wavebench/daemon/host_check.hpp"
@@ -42,18 +46,28 @@ struct ApiRequest {
 };
 
 struct ApiResponse {
+  ApiResponse() = default;
+  ApiResponse(int status_code, nlohmann::json json) : status(status_code), body(std::move(json)) {}
+
   int status = 200;
   nlohmann::json body;
+  // A response that is not JSON (a console page, a script, an event stream's first answer):
+  // sent as is with its content type instead of `body`.
+  std::optional<std::string> raw_body;
+  std::string content_type = "application/json";
+  std::vector<std::pair<std::string, std::string>> headers;  // extra header fields
 };
 
 class LowPriorityReads;
+class ConsoleFiles;
 
 class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
 
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
-            HostCheck host_check = HostCheck());
+            HostCheck host_check = HostCheck(),
+            std::shared_ptr<const ConsoleFiles> console = nullptr);
   // Thread-safe; may block while a run is being started. Never throws: every failure is an
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
@@ -78,6 +92,7 @@ class DaemonApi {
   std::string token_;
   HostCheck host_check_;
   std::shared_ptr<LowPriorityReads> reads_;
+  std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.

@@ -29,6 +29,7 @@ struct DaemonOptions {
   // Listening beyond loopback exposes the bench to the network: only when asked for.
   bool allow_remote = false;
   std::vector<std::string> allowed_hosts;  // Host names accepted beside IP literals, localhost
+  std::filesystem::path web_root;          // empty: default_console_root()
 };
 
 }  // namespace wavebench::daemon
