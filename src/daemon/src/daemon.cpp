@@ -23,7 +23,8 @@ Daemon::Daemon(DaemonSetup setup)
       store_(setup_.runs_dir, setup_.software_version),
       live_(setup_.live_capacity),
       bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
-      api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts)) {
+      api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts),
+           setup_.specs_dir) {
   bench_thread_.set_check(setup_.bench_check);
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;

@@ -15,7 +15,8 @@ namespace {
 constexpr const char* kLimits[] = {"static_p2p_arcmin",      "static_std_arcmin",
                                    "static_abs_mean_arcmin", "static_lost_motion_arcmin",
                                    "lost_motion_arcmin",     "min_stiffness_nm_per_rad",
-                                   "dynamic_p2p_arcsec",     "dynamic_rms_arcsec"};
+                                   "dynamic_p2p_arcsec",     "dynamic_rms_arcsec",
+                                   "twin_residual_rms_arcsec"};
 
 class Checker {
  public:
@@ -103,6 +104,13 @@ LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& re
   if (const auto it = results.find("dynamic"); it != results.end() && it->is_object()) {
     c.check("dynamic_p2p_arcsec", num(*it, "p2p_arcsec"), "dynamic TE");
     c.check("dynamic_rms_arcsec", num(*it, "rms_arcsec"), "dynamic TE");
+  }
+  // Measured − predicted TE of the twin with the nominal model: how far the unit is from the
+  // gear model it is sold as (the calibrated twin fits the unit, so its residual would not say).
+  if (const auto it = results.find("twin"); it != results.end() && it->is_object()) {
+    if (const auto r = it->find("residual"); r != it->end() && r->is_object()) {
+      c.check("twin_residual_rms_arcsec", num(*r, "rms_arcsec"), "twin residual");
+    }
   }
   return v;
 }
