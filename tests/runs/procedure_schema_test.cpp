@@ -82,7 +82,8 @@ TEST_P(ProcedureSchema, EveryAcceptedKeyIsDescribedWithItsDefault) {
 TEST_P(ProcedureSchema, AValueOutsideTheDescribedRangeIsRefusedNamingTheKey) {
   const auto& name = GetParam();
   int checked = 0;
-  for (const auto& p : procedures_json()["procedures"]) {
+  const auto catalogue = procedures_json();
+  for (const auto& p : catalogue["procedures"]) {
     if (p["name"] != name) continue;
     for (const auto& o : p["options"]) {
       const auto key = o["name"].get<std::string>();
@@ -105,9 +106,9 @@ TEST_P(ProcedureSchema, AValueOutsideTheDescribedRangeIsRefusedNamingTheKey) {
 
 INSTANTIATE_TEST_SUITE_P(Procedures, ProcedureSchema,
                          ::testing::Values("static", "dynamic", "lost-motion"),
-                         [](const auto& info) {
-                           return info.param == "lost-motion" ? std::string("lost_motion")
-                                                              : info.param;
+                         [](const auto& param_info) {
+                           return param_info.param == "lost-motion" ? std::string("lost_motion")
+                                                              : param_info.param;
                          });
 
 TEST(ProcedureRegistry, NamesTheProceduresAndRefusesAnUnknownOneAsBefore) {
