@@ -105,9 +105,9 @@ runs::RunRequest build_request(const RunArgs& a) {
   if (a.no_calibration) o["calibrate_twin"] = false;
   r.options = o;
   if (!a.spec.empty()) {
-    r.spec = runs::find_product_spec(a.specs_dir.empty() ? runs::default_specs_dir()
-                                                         : std::filesystem::path(a.specs_dir),
-                                     a.spec);
+    r.spec = runs::find_product_spec(
+        a.specs_dir.empty() ? runs::default_specs_dir() : std::filesystem::path(a.specs_dir),
+        a.spec);
   }
   return r;
 }

@@ -49,13 +49,13 @@ TEST_F(CatalogueApiTest, AnUnknownSpecIsRefusedNamingItAndTheKnownOnesAndNothing
   const auto reply = client().post("/api/runs", {{"procedure", "static"}, {"spec", "csf-99"}});
   EXPECT_EQ(reply.status, 400);
   const auto detail = reply.body["detail"].get<std::string>();
-  EXPECT_EQ(detail.rfind("spec: got 'csf-99', expected one of the known specs: ", 0), 0u)
-      << detail;
+  EXPECT_EQ(detail.rfind("spec: got 'csf-99', expected one of the known specs: ", 0), 0u) << detail;
   EXPECT_NE(detail.find("csf-25-100"), std::string::npos) << detail;
   EXPECT_EQ(client().post("/api/runs", {{"procedure", "static"}, {"spec", 3}}).status, 400);
   EXPECT_EQ(client().get("/api/runs").body["total"], 0);
   const auto started = client().post(
-      "/api/runs", {{"procedure", "static"}, {"spec", "sim-seed004"}, {"options", {{"seconds", 0.05}}}});
+      "/api/runs",
+      {{"procedure", "static"}, {"spec", "sim-seed004"}, {"options", {{"seconds", 0.05}}}});
   EXPECT_EQ(started.status, 201) << started.body.dump();
   ASSERT_TRUE(eventually([&] { return run_finished(); }));
 }
@@ -63,8 +63,8 @@ TEST_F(CatalogueApiTest, AnUnknownSpecIsRefusedNamingItAndTheKnownOnesAndNothing
 TEST_F(CatalogueApiTest, HistoryPagesNewestFirstWithTheTotalAndFilters) {
   std::vector<std::string> ids;
   for (const char* procedure : {"static", "dynamic", "static", "static"}) {
-    const auto started = client().post("/api/runs", {{"procedure", procedure},
-                                                     {"options", {{"seconds", 0.05}}}});
+    const auto started =
+        client().post("/api/runs", {{"procedure", procedure}, {"options", {{"seconds", 0.05}}}});
     ASSERT_EQ(started.status, 201) << started.body.dump();
     ids.push_back(started.body["run_id"]);
     ASSERT_TRUE(eventually([&] { return run_finished(); }));
@@ -86,7 +86,8 @@ TEST_F(CatalogueApiTest, HistoryPagesNewestFirstWithTheTotalAndFilters) {
   EXPECT_EQ(client().get("/api/runs?verdict=none").body["total"], 0);
   EXPECT_EQ(client().get("/api/runs?unit=SN-FAKE-1&procedure=dynamic").body["total"], 1);
   EXPECT_EQ(client().get("/api/runs?from=" + ids[1] + "&to=" + ids[2]).body["total"], 2);
-  const std::string day = ids[0].substr(0, 4) + "-" + ids[0].substr(4, 2) + "-" + ids[0].substr(6, 2);
+  const std::string day =
+      ids[0].substr(0, 4) + "-" + ids[0].substr(4, 2) + "-" + ids[0].substr(6, 2);
   EXPECT_EQ(client().get("/api/runs?from=" + day + "&to=" + day).body["total"], 4);
   EXPECT_EQ(client().get("/api/runs?to=2000-01-01").body["total"], 0);
 }

@@ -13,10 +13,21 @@ namespace {
 using HostileSpecHttp = DaemonFixture;
 
 TEST_F(HostileSpecHttp, BadSpecNamesInAStartAreRefusedAndNothingStarts) {
-  const std::vector<nlohmann::json> names = {
-      "../configs/benches/sim", "../../../etc/passwd", "/etc/passwd", std::string(65, 'a'),
-      std::string(10000, 'b'), "", ".hidden", "csf-25-100/", "csf-25-100.yaml", "nope",
-      "csf 25", nlohmann::json::array({"csf-25-100"}), nlohmann::json::object(), 25, true};
+  const std::vector<nlohmann::json> names = {"../configs/benches/sim",
+                                             "../../../etc/passwd",
+                                             "/etc/passwd",
+                                             std::string(65, 'a'),
+                                             std::string(10000, 'b'),
+                                             "",
+                                             ".hidden",
+                                             "csf-25-100/",
+                                             "csf-25-100.yaml",
+                                             "nope",
+                                             "csf 25",
+                                             nlohmann::json::array({"csf-25-100"}),
+                                             nlohmann::json::object(),
+                                             25,
+                                             true};
   int refused = 0;
   for (const auto& name : names) {
     const auto reply = client().post("/api/runs", {{"procedure", "static"}, {"spec", name}});

@@ -98,8 +98,8 @@ TEST_F(HostileSpecs, BadSpecNamesAreRefusedNamingSpecAndTheKnownOnes) {
   fs::create_directories(dir_ / "secret");
   std::ofstream(dir_ / "secret" / "x.yaml") << kGood;
   const std::vector<std::string> names = {
-      "../secret/x", "../x", "/etc/passwd", "a/b", ".good", "", std::string(65, 'a'),
-      "good spec", "gööd", "good\n", "unknown", "good.yaml", "GOOD", "x;rm -rf"};
+      "../secret/x", "../x", "/etc/passwd", "a/b",     ".good",     "",     std::string(65, 'a'),
+      "good spec",   "gööd", "good\n",      "unknown", "good.yaml", "GOOD", "x;rm -rf"};
   int refused = 0;
   for (const auto& name : names) {
     try {
@@ -119,7 +119,7 @@ TEST_F(HostileSpecs, BadSpecNamesAreRefusedNamingSpecAndTheKnownOnes) {
 }
 
 TEST_F(HostileSpecs, TheCliRefusesABadSpecNameWithExit2AndCreatesNoRun) {
-  for (const std::string name : {"../x", "nope", std::string(80, 'z')}) {
+  for (const auto& name : std::vector<std::string>{"../x", "nope", std::string(80, 'z')}) {
     const auto run = wavebench::testing::run_cli(
         "run static --positions 2 --loads 0 --quiet --out '" + (dir_ / "runs").string() +
             "' --specs-dir '" + (dir_ / "specs").string() + "' --spec '" + name + "'",

@@ -61,8 +61,7 @@ TEST_P(ProcedureSchema, EveryAcceptedKeyIsDescribedWithItsDefault) {
     ASSERT_TRUE(defaults.contains(key)) << name << "." << key;
     EXPECT_EQ(o["default"], defaults[key]) << name << "." << key;
     const auto type = o["type"].get<std::string>();
-    EXPECT_TRUE(type == "number" || type == "integer" || type == "boolean" ||
-                type == "number_list")
+    EXPECT_TRUE(type == "number" || type == "integer" || type == "boolean" || type == "number_list")
         << type;
     EXPECT_TRUE(o.contains("unit")) << key;
     EXPECT_FALSE(o["description"].get<std::string>().empty()) << key;
@@ -108,7 +107,7 @@ INSTANTIATE_TEST_SUITE_P(Procedures, ProcedureSchema,
                          ::testing::Values("static", "dynamic", "lost-motion"),
                          [](const auto& param_info) {
                            return param_info.param == "lost-motion" ? std::string("lost_motion")
-                                                              : param_info.param;
+                                                                    : param_info.param;
                          });
 
 TEST(ProcedureRegistry, NamesTheProceduresAndRefusesAnUnknownOneAsBefore) {

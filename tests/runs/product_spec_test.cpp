@@ -1,12 +1,13 @@
 // Product specs (configs/specs/*.yaml): read with their units into run limits; a request names
 // one by a bounded name that must exist.
+#include "wavebench/runs/product_spec.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
-#include "wavebench/runs/product_spec.hpp"
 #include "wavebench/runs/run_limits.hpp"
 
 namespace wavebench::runs {
@@ -56,8 +57,8 @@ TEST(ProductSpec, TheTwinResidualLimitChecksTheNominalTwinsResidual) {
   ASSERT_TRUE(fail.pass.has_value());
   EXPECT_FALSE(*fail.pass);
   EXPECT_EQ(fail.checks[0]["limit"], "twin_residual_rms_arcsec");
-  EXPECT_FALSE(check_limits({{"twin_residual_rms_arcsec", 2.5}}, nlohmann::json::object())
-                   .pass.has_value());
+  EXPECT_FALSE(
+      check_limits({{"twin_residual_rms_arcsec", 2.5}}, nlohmann::json::object()).pass.has_value());
 }
 
 TEST(ProductSpec, AnUnknownNameIsRefusedListingTheKnownSpecs) {

@@ -56,8 +56,8 @@ TEST_F(RunHistory, FiltersCombine) {
   RunQuery q;
   q.unit_serial = "A";
   q.procedure = "static";  // A: 0 2 4 6 8 10; static: not 0 3 6 9
-  EXPECT_EQ(ids_of(store_->list_runs(q)), (std::vector<std::string>{ids_[10], ids_[8], ids_[4],
-                                                                     ids_[2]}));
+  EXPECT_EQ(ids_of(store_->list_runs(q)),
+            (std::vector<std::string>{ids_[10], ids_[8], ids_[4], ids_[2]}));
   EXPECT_EQ(store_->count_runs(q), 4u);
   RunQuery spec;
   spec.spec = "csf-25-100";

@@ -28,8 +28,8 @@ Daemon::Daemon(DaemonSetup setup)
   bench_thread_.set_check(setup_.bench_check);
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
-  spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(),
-               store_.list_runs().size(), store_.list_runs(incomplete).size());
+  spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(), store_.count_runs(),
+               store_.count_runs(incomplete));
 }
 
 Daemon::~Daemon() {

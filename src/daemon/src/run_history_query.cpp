@@ -68,11 +68,10 @@ Bound time_bound(const std::string& key, const std::string& v) {
   // T HH:MM[:SS][Z]
   std::string rest = v.substr(10);
   if (!rest.empty() && rest.back() == 'Z') rest.pop_back();
-  const bool minutes = rest.size() == 6 && rest[0] == 'T' && digits(rest, 1, 2) &&
-                       rest[3] == ':' && digits(rest, 4, 2);
-  const bool seconds = rest.size() == 9 && rest[0] == 'T' && digits(rest, 1, 2) &&
-                       rest[3] == ':' && digits(rest, 4, 2) && rest[6] == ':' &&
-                       digits(rest, 7, 2);
+  const bool minutes = rest.size() == 6 && rest[0] == 'T' && digits(rest, 1, 2) && rest[3] == ':' &&
+                       digits(rest, 4, 2);
+  const bool seconds = rest.size() == 9 && rest[0] == 'T' && digits(rest, 1, 2) && rest[3] == ':' &&
+                       digits(rest, 4, 2) && rest[6] == ':' && digits(rest, 7, 2);
   if (!minutes && !seconds) refuse(key, v, expected);
   const int h = number_at(rest, 1, 2), m = number_at(rest, 4, 2);
   const int s = seconds ? number_at(rest, 7, 2) : 0;

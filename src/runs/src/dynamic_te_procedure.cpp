@@ -26,8 +26,7 @@ void declare(OptionReader& r, DynamicTeOptions& o) {
   r.number("output_revolutions", o.output_revolutions, 1, 1000, true,
            {"", "output revolutions recorded for the TE trace and its order spectrum"});
   r.number("load_nm", o.load_nm, 0, 1e4, true, {"N·m", "brake torque during the run"});
-  r.integer("max_peaks", o.max_peaks, 1, 200,
-            {"", "largest peaks of the order spectrum reported"});
+  r.integer("max_peaks", o.max_peaks, 1, 200, {"", "largest peaks of the order spectrum reported"});
   r.integer("harmonics", o.harmonics, 1, 20,
             {"", "harmonics of the output 1/rev and of the mesh named in the spectrum"});
 }

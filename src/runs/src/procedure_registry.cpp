@@ -31,7 +31,9 @@ const std::array<ProcedureEntry, 3> kProcedures{{
 
 }  // namespace
 
-std::span<const ProcedureEntry> procedure_entries() { return kProcedures; }
+std::span<const ProcedureEntry> procedure_entries() {
+  return kProcedures;
+}
 
 const ProcedureEntry* find_procedure(std::string_view name) {
   for (const auto& p : kProcedures) {

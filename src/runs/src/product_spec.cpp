@@ -48,8 +48,10 @@ constexpr std::array<LimitKind, 9> kKinds{{
 // A limit without its unit would be read as SI (radians): 1.0 meant as arcmin is 3438 arcmin.
 bool has_unit(const std::string& text) {
   return std::any_of(text.begin(), text.end(),
-                     [](char c) { return std::isalpha(static_cast<unsigned char>(c)) != 0 &&
-                                         c != 'e' && c != 'E'; }) ||
+                     [](char c) {
+                       return std::isalpha(static_cast<unsigned char>(c)) != 0 && c != 'e' &&
+                              c != 'E';
+                     }) ||
          text.find('%') != std::string::npos;
 }
 
@@ -77,14 +79,14 @@ ProductSpec read_spec(strict_yaml::YamlSection& doc, const std::string& name) {
     if (written.find('%') == std::string::npos) {
       limits.fail("lost_motion_at", written, "a percentage of rated torque in (0, 100 %]");
     }
-    spec.lost_motion_fraction = limits.optional_quantity_in(
-        "lost_motion_at", Dimension::kDimensionless, 1e-6, 1,
-        "a percentage of rated torque in (0, 100 %]");
+    spec.lost_motion_fraction =
+        limits.optional_quantity_in("lost_motion_at", Dimension::kDimensionless, 1e-6, 1,
+                                    "a percentage of rated torque in (0, 100 %]");
   }
+  limits.finish();  // an unknown (misspelt) limit is named before "no limit"
   if (spec.limits.empty()) {
     limits.fail("", "no limit", "at least one limit");
   }
-  limits.finish();
   doc.finish();
   return spec;
 }
@@ -154,8 +156,7 @@ ProductSpec find_product_spec(const std::filesystem::path& dir, const std::strin
   const bool well_formed =
       !name.empty() && name.size() <= kMaxSpecName && name.front() != '.' &&
       std::all_of(name.begin(), name.end(), [](char c) {
-        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' ||
-               c == '-';
+        return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == '-';
       });
   const auto names = product_spec_names(dir);
   std::string known;
@@ -168,8 +169,8 @@ ProductSpec find_product_spec(const std::filesystem::path& dir, const std::strin
                                 known);
   }
   if (std::find(names.begin(), names.end(), name) == names.end()) {
-    throw std::invalid_argument("spec: got '" + name + "', expected one of the known specs: " +
-                                known);
+    throw std::invalid_argument("spec: got '" + name +
+                                "', expected one of the known specs: " + known);
   }
   return load_product_spec(dir / (name + ".yaml"));
 }

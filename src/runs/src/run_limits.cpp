@@ -12,11 +12,10 @@ namespace wavebench::runs {
 
 namespace {
 
-constexpr const char* kLimits[] = {"static_p2p_arcmin",      "static_std_arcmin",
-                                   "static_abs_mean_arcmin", "static_lost_motion_arcmin",
-                                   "lost_motion_arcmin",     "min_stiffness_nm_per_rad",
-                                   "dynamic_p2p_arcsec",     "dynamic_rms_arcsec",
-                                   "twin_residual_rms_arcsec"};
+constexpr const char* kLimits[] = {
+    "static_p2p_arcmin",         "static_std_arcmin",  "static_abs_mean_arcmin",
+    "static_lost_motion_arcmin", "lost_motion_arcmin", "min_stiffness_nm_per_rad",
+    "dynamic_p2p_arcsec",        "dynamic_rms_arcsec", "twin_residual_rms_arcsec"};
 
 class Checker {
  public:

@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cerrno>
-#include <cstdint>
 #include <chrono>
+#include <cstdint>
 #include <ctime>
 #include <fstream>
 #include <stdexcept>
@@ -178,7 +178,7 @@ Filters filters_of(const RunQuery& q) {
   add("id <= ?", q.to_id);
   if (q.verdict) {
     f.where += f.where.empty() ? " WHERE " : " AND ";
-    f.where += *q.verdict == RunVerdict::kNone ? "pass IS NULL"
+    f.where += *q.verdict == RunVerdict::kNone   ? "pass IS NULL"
                : *q.verdict == RunVerdict::kPass ? "pass = 1"
                                                  : "pass = 0";
   }
