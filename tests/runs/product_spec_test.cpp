@@ -46,10 +46,14 @@ TEST(ProductSpec, UnitsAreConvertedToTheUnitsOfTheLimitKeys) {
   EXPECT_EQ(j["limits"][0]["key"], "static_te_p2p");
   EXPECT_EQ(j["limits"][0]["unit"], "arcmin");
   EXPECT_NEAR(j["lost_motion_at_percent"].get<double>(), 4.0, 1e-12);
+  // Written values read back as written, not with the unit round trip's last bit.
+  EXPECT_EQ(find_product_spec(kShipped, "sim-seed004").run_limits()["static_p2p_arcmin"], 7.0);
 }
 
-TEST(ProductSpec, TheTwinResidualLimitChecksTheNominalTwinsResidual) {
-  const nlohmann::json results = {{"twin", {{"residual", {{"rms_arcsec", 3.0}}}}}};
+TEST(ProductSpec, TheTwinResidualLimitChecksTheCalibratedTwinsResidual) {
+  const nlohmann::json results = {
+      {"twin",
+       {{"residual", {{"rms_arcsec", 100.0}}}, {"calibration", {{"rms_after_arcsec", 3.0}}}}}};
   const auto pass = check_limits({{"twin_residual_rms_arcsec", 4.0}}, results);
   ASSERT_TRUE(pass.pass.has_value());
   EXPECT_TRUE(*pass.pass);
@@ -59,6 +63,9 @@ TEST(ProductSpec, TheTwinResidualLimitChecksTheNominalTwinsResidual) {
   EXPECT_EQ(fail.checks[0]["limit"], "twin_residual_rms_arcsec");
   EXPECT_FALSE(
       check_limits({{"twin_residual_rms_arcsec", 2.5}}, nlohmann::json::object()).pass.has_value());
+  // Without a calibration the limit does not apply: the nominal residual is another quantity.
+  const nlohmann::json uncalibrated = {{"twin", {{"residual", {{"rms_arcsec", 1.0}}}}}};
+  EXPECT_FALSE(check_limits({{"twin_residual_rms_arcsec", 2.5}}, uncalibrated).pass.has_value());
 }
 
 TEST(ProductSpec, AnUnknownNameIsRefusedListingTheKnownSpecs) {

@@ -47,7 +47,7 @@ def main():
         "static with the twin, its calibration and the report": (sim, ["static", "--positions", "4", "--loads",
                                                                        "0,30", "--window", "0.1", "--report"]),
         "dynamic, short, with the twin and a spec": (sim, ["dynamic", "--rpm", "600", "--revolutions", "1",
-                                                           "--option", "run_in_s=0.2", "--no-calibration",
+                                                           "--option", "run_in_s=0.2",
                                                            "--limit", "dynamic_rms_arcsec=1000",
                                                            "--spec", "sim-seed004"]),
         "lost motion": (sim, ["lost-motion", "--torques", "5,10,20,40", "--no-twin",

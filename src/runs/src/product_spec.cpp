@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cctype>
+#include <cstdio>
 #include <cstdlib>
 #include <numbers>
 #include <stdexcept>
@@ -55,6 +56,14 @@ bool has_unit(const std::string& text) {
          text.find('%') != std::string::npos;
 }
 
+// A limit converted back from SI to its key's unit, without the round trip's last-bit noise
+// (7 arcmin reads 7, not 7.000000000000001).
+double to_12_digits(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.12g", v);
+  return std::strtod(text, nullptr);
+}
+
 ProductSpec read_spec(strict_yaml::YamlSection& doc, const std::string& name) {
   ProductSpec spec;
   spec.name = name;
@@ -69,7 +78,7 @@ ProductSpec read_spec(strict_yaml::YamlSection& doc, const std::string& name) {
                   "a value > 0 with its unit: " + strict_yaml::describe(k.dimension));
     }
     const double si = limits.positive_quantity(k.key, k.dimension);
-    spec.limits.push_back({k.key, k.limit, si / k.per_unit, k.unit});
+    spec.limits.push_back({k.key, k.limit, to_12_digits(si / k.per_unit), k.unit});
   }
   if (limits.has("lost_motion_at")) {
     const std::string written = limits.value_text("lost_motion_at");

@@ -11,7 +11,7 @@
 //     lost_motion_at: 3 %            ... measured at ± this fraction of rated torque
 //     min_k1: 3.1e4 N*m/rad          -> min_stiffness_nm_per_rad
 //     dynamic_te_p2p: 90 arcsec      -> dynamic_p2p_arcsec
-//     twin_residual_rms: 10 arcsec   -> twin_residual_rms_arcsec
+//     twin_residual_rms: 3 arcsec    -> twin_residual_rms_arcsec (the calibrated twin's)
 //   (also static_te_std, static_te_abs_mean, static_lost_motion, dynamic_te_rms)
 
 #include <filesystem>
