@@ -23,6 +23,7 @@ namespace {
 using strict_yaml::Dimension;
 
 constexpr std::size_t kMaxSpecName = 64;
+constexpr std::size_t kListedSpecs = 20;
 constexpr double kArcmin = std::numbers::pi / 10800;
 constexpr double kArcsec = kArcmin / 60;
 
@@ -168,8 +169,14 @@ ProductSpec find_product_spec(const std::filesystem::path& dir, const std::strin
         return std::isalnum(static_cast<unsigned char>(c)) != 0 || c == '.' || c == '_' || c == '-';
       });
   const auto names = product_spec_names(dir);
+  // Listed in the refusal, at most kListedSpecs of them: a message, not a directory listing.
   std::string known;
-  for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+  for (std::size_t i = 0; i < names.size() && i < kListedSpecs; ++i) {
+    known += (known.empty() ? "" : ", ") + names[i];
+  }
+  if (names.size() > kListedSpecs) {
+    known += ", ... (" + std::to_string(names.size()) + " in all; GET /api/specs lists them)";
+  }
   if (known.empty()) known = "(none in " + dir.string() + ")";
   if (!well_formed) {
     throw std::invalid_argument("spec: got '" + quoted_value(name) +
