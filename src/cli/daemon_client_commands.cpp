@@ -64,6 +64,7 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   struct StartArgs {
     std::string procedure;
     std::vector<std::string> options;
+    std::string spec;
     bool wait = false;
   };
   auto start_args = std::make_shared<StartArgs>();
@@ -74,11 +75,13 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   start->add_option("--option", start_args->options,
                     "procedure option KEY=VALUE (repeatable; VALUE as JSON where it parses, e.g. "
                     "positions=4 loads_nm=[0,60])");
+  start->add_option("--spec", start_args->spec,
+                    "product spec the run is accepted against (its limits give the verdict)");
   start->add_flag("--wait", start_args->wait,
                   "follow the run's progress and exit 0 only when it completes");
   start->callback([options, start_args, &status] {
     status.code = daemon::client_start(options->context(), start_args->procedure,
-                                       start_args->options, start_args->wait);
+                                       start_args->options, start_args->wait, start_args->spec);
   });
 
   daemon_subcommand(app, "abort", "abort the active run (the bench goes to its safe state)",
@@ -94,7 +97,7 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   runs->add_option("--procedure", filter->procedure, "only this procedure");
   runs->add_option("--status", filter->status, "running, complete, aborted or incomplete");
   runs->add_option("--unit", filter->unit, "only this unit serial");
-  runs->add_option("--limit", filter->limit, "newest N runs");
+  runs->add_option("--limit", filter->limit, "newest N runs (1 to 1000; default 50)");
   runs->callback([options, filter, &status] {
     status.code = daemon::client_runs(options->context(), *filter);
   });

@@ -41,6 +41,8 @@ struct RunArgs {
   std::string options_file;          // YAML procedure options (configs/procedures/*.yaml)
   std::vector<std::string> options;  // KEY=VALUE
   std::vector<std::string> limits;   // KEY=VALUE
+  std::string spec;                  // a product spec's name (configs/specs/NAME.yaml)
+  std::string specs_dir;             // empty: runs::default_specs_dir()
   bool no_twin = false;
   bool no_report = false;
   bool no_calibration = false;
@@ -102,6 +104,11 @@ runs::RunRequest build_request(const RunArgs& a) {
   }
   if (a.no_calibration) o["calibrate_twin"] = false;
   r.options = o;
+  if (!a.spec.empty()) {
+    r.spec = runs::find_product_spec(
+        a.specs_dir.empty() ? runs::default_specs_dir() : std::filesystem::path(a.specs_dir),
+        a.spec);
+  }
   return r;
 }
 
@@ -189,6 +196,11 @@ int run_procedure(const RunArgs& a) {
   if (outcome.results.contains("pass") && outcome.results["pass"].is_boolean()) {
     std::cout << (outcome.results["pass"].get<bool>() ? ", pass" : ", FAIL");
   }
+  if (request.spec) {
+    const auto& verdict = outcome.results["verdict"];
+    std::cout << ", spec " << request.spec->name << ": "
+              << (verdict.is_string() ? verdict.get<std::string>() : std::string("no verdict"));
+  }
   std::cout << "\nresults: " << (outcome.dir / "results.json").string() << "\n";
   if (const auto w = outcome.results.find("warnings"); w != outcome.results.end()) {
     for (const auto& warning : *w)
@@ -231,6 +243,11 @@ void register_run_commands(CLI::App& app, ExitStatus& status) {
   cmd->add_option("--option", args->options, "any procedure option as KEY=VALUE (repeatable)");
   cmd->add_option("--limit", args->limits,
                   "pass/fail limit as KEY=VALUE, e.g. static_p2p_arcmin=6 (repeatable)");
+  cmd->add_option("--spec", args->spec,
+                  "product spec the run is accepted against (configs/specs/NAME.yaml): its "
+                  "limits give the verdict, PASS or FAIL");
+  cmd->add_option("--specs-dir", args->specs_dir,
+                  "folder of product specs (default the shipped configs/specs)");
   cmd->add_flag("--no-twin", args->no_twin, "do not run the twin beside the bench");
   cmd->add_flag("--no-report", args->no_report, "do not write report.html");
   cmd->add_flag("--no-calibration", args->no_calibration, "do not calibrate the twin");

@@ -46,9 +46,10 @@ def main():
                                                   "--no-twin"]),
         "static with the twin, its calibration and the report": (sim, ["static", "--positions", "4", "--loads",
                                                                        "0,30", "--window", "0.1", "--report"]),
-        "dynamic, short, with the twin": (sim, ["dynamic", "--rpm", "600", "--revolutions", "1",
-                                                "--option", "run_in_s=0.2", "--no-calibration",
-                                                "--limit", "dynamic_rms_arcsec=1000"]),
+        "dynamic, short, with the twin and a spec": (sim, ["dynamic", "--rpm", "600", "--revolutions", "1",
+                                                           "--option", "run_in_s=0.2",
+                                                           "--limit", "dynamic_rms_arcsec=1000",
+                                                           "--spec", "sim-seed004"]),
         "lost motion": (sim, ["lost-motion", "--torques", "5,10,20,40", "--no-twin",
                               "--limit", "lost_motion_arcmin=100"]),
     }
@@ -84,7 +85,7 @@ def main():
         "static, 4 positions, a limit": ["static", "lost_motion", "load_shift", "limit_checks", "acquisition"],
         "static with an extra channel": ["extra_channels"],
         "static with the twin, its calibration and the report": ["twin", "report"],
-        "dynamic, short, with the twin": ["dynamic", "twin", "limit_checks"],
+        "dynamic, short, with the twin and a spec": ["dynamic", "twin", "limit_checks", "spec", "verdict"],
         "lost motion": ["lost_motion_fit", "limit_checks"],
     }
     for name, keys in expected_sections.items():
@@ -92,11 +93,29 @@ def main():
         if missing:
             print("FAIL", name + ": expected sections missing:", missing)
             failed = True
-    for name in ("static with the twin, its calibration and the report", "dynamic, short, with the twin"):
+    for name in ("static with the twin, its calibration and the report",
+                 "dynamic, short, with the twin and a spec"):
         twin = produced.get(name, {}).get("twin", {})
         if "error" in twin or "residual" not in twin:
             print("FAIL", name + ": the twin did not run through:", json.dumps(twin)[:300])
             failed = True
+    # A spec's limits are checked (the twin residual among them) and give the verdict.
+    spec_run = produced.get("dynamic, short, with the twin and a spec", {})
+    checked = {c["limit"] for c in spec_run.get("limit_checks", [])}
+    if spec_run and (spec_run.get("spec", {}).get("name") != "sim-seed004"
+                     or spec_run.get("verdict") not in ("PASS", "FAIL")
+                     or not {"dynamic_p2p_arcsec", "twin_residual_rms_arcsec", "dynamic_rms_arcsec"} <= checked
+                     or spec_run["verdict"] != ("PASS" if spec_run["pass"] else "FAIL")):
+        print("FAIL dynamic with a spec: spec", json.dumps(spec_run.get("spec"))[:200], "verdict",
+              spec_run.get("verdict"), "checks", sorted(checked))
+        failed = True
+    elif spec_run:
+        print("ok   spec", spec_run["spec"]["name"], "verdict", spec_run["verdict"], "checks", sorted(checked))
+    base_no_spec = produced.get("static, 4 positions, a limit", {})
+    if base_no_spec and (base_no_spec.get("spec", "absent") is not None or base_no_spec.get("verdict") != "PASS"):
+        print("FAIL static without a spec: spec", base_no_spec.get("spec", "absent"), "verdict",
+              base_no_spec.get("verdict"))
+        failed = True
     twin = produced.get("static with the twin, its calibration and the report", {}).get("twin", {})
     if "calibration" not in twin:
         print("FAIL static with the twin: no twin.calibration")
@@ -116,6 +135,9 @@ def main():
     b = copy.deepcopy(base); del b["static"]; broken["complete static run without its passes"] = b
     b = copy.deepcopy(base); b["acquisition"]["log_queue_dropped"] = -1; broken["negative count"] = b
     b = copy.deepcopy(base); b["status"] = "aborted"; broken["aborted without a reason"] = b
+    b = copy.deepcopy(base); b["verdict"] = "MAYBE"; broken["a verdict that is not PASS, FAIL or null"] = b
+    b = copy.deepcopy(base); b["spec"] = {"name": "../x", "model": "M", "lost_motion_at_percent": None,
+                                          "limits": []}; broken["a spec name with a path"] = b
     for name, instance in broken.items():
         if validator.is_valid(instance):
             print("FAIL the schema accepts a results.json with", name)
@@ -128,7 +150,7 @@ def main():
         aborted = copy.deepcopy(produced["lost motion"])
         for key in ("lost_motion_fit", "limit_checks", "pass"):
             del aborted[key]
-        aborted.update(status="aborted", reason="over-torque: 151 N*m > 150 N*m")
+        aborted.update(status="aborted", reason="over-torque: 151 N*m > 150 N*m", verdict=None)
         errors = errors_of(validator, aborted)
         if errors:
             print("FAIL an aborted run's shape is refused:\n  " + "\n  ".join(errors))

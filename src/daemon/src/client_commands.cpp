@@ -155,8 +155,9 @@ int client_status(const ClientContext& ctx) {
 }
 
 int client_start(const ClientContext& ctx, const std::string& procedure,
-                 const std::vector<std::string>& options, bool wait) {
+                 const std::vector<std::string>& options, bool wait, const std::string& spec) {
   nlohmann::json body = {{"procedure", procedure}, {"options", nlohmann::json::object()}};
+  if (!spec.empty()) body["spec"] = spec;
   for (const auto& option : options) {
     const auto eq = option.find('=');
     if (eq == std::string::npos || eq == 0) {

@@ -11,7 +11,10 @@
 #include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
+#include "wavebench/daemon/run_history_query.hpp"
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/runs/procedure_catalogue.hpp"
+#include "wavebench/runs/product_spec.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace wavebench::daemon {
@@ -105,13 +108,14 @@ std::string response_text(const ApiResponse& response) {
 }
 
 DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
-                     std::string token, HostCheck host_check,
+                     std::string token, HostCheck host_check, std::filesystem::path specs_dir,
                      std::shared_ptr<const ConsoleFiles> console, SoftwareIdentity software)
     : bench_(bench),
       store_(store),
       live_(live),
       token_(std::move(token)),
       host_check_(std::move(host_check)),
+      specs_dir_(specs_dir.empty() ? runs::default_specs_dir() : std::move(specs_dir)),
       reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)),
       console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()),
       software_(std::move(software)) {}
@@ -192,6 +196,10 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       if (seg[1] == "stop") return stop();
       return reset();
     }
+    if (seg.size() == 2 && seg[1] == "procedures") {
+      return get ? ApiResponse{200, runs::procedures_json()} : method_not_allowed("GET");
+    }
+    if (seg.size() == 2 && seg[1] == "specs") return get ? list_specs() : method_not_allowed("GET");
     if (seg.size() == 3 && seg[1] == "bench" && seg[2] == "check")
       return get ? bench_check() : method_not_allowed("GET");
     if (seg.size() == 2 && seg[1] == "runs") {
@@ -275,9 +283,10 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
                          "', expected a JSON object {\"procedure\": ..., \"options\": {...}}");
   }
   for (const auto& [key, value] : body.items()) {
-    if (key != "procedure" && key != "options" && key != "twin" && key != "report") {
+    if (key != "procedure" && key != "options" && key != "twin" && key != "report" &&
+        key != "spec") {
       return api_error(400, "bad request",
-                       key + ": unknown key; expected procedure, options, twin or report");
+                       key + ": unknown key; expected procedure, options, spec, twin or report");
     }
   }
   runs::RunRequest run;
@@ -303,6 +312,17 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
                          std::string(key) + ": got " + flag->dump() + ", expected true or false");
       }
       (std::string(key) == "twin" ? run.twin : run.report) = flag->get<bool>();
+    }
+  }
+  if (const auto spec = body.find("spec"); spec != body.end() && !spec->is_null()) {
+    if (!spec->is_string()) {
+      return api_error(400, "bad request",
+                       "spec: got " + spec->dump() + ", expected a spec name (GET /api/specs)");
+    }
+    try {
+      run.spec = runs::find_product_spec(specs_dir_, spec->get<std::string>());
+    } catch (const std::invalid_argument& e) {
+      return api_error(400, "bad request", e.what());
     }
   }
   const auto outcome = bench_.start_run(std::move(run));
@@ -358,30 +378,26 @@ ApiResponse DaemonApi::reset() const {
 
 ApiResponse DaemonApi::list_runs(const HttpTarget& target) const {
   storage::RunQuery query;
-  for (const auto& [key, value] : target.query) {
-    if (key == "procedure") {
-      query.procedure = value;
-    } else if (key == "unit") {
-      query.unit_serial = value;
-    } else if (key == "status") {
-      try {
-        query.status = storage::parse_run_status(value);
-      } catch (const std::invalid_argument&) {
-        throw BadParameter("status: got '" + value +
-                           "', expected running, complete, aborted or incomplete");
-      }
-    } else if (key == "limit") {
-      const auto limit = unsigned_param(target, "limit");
-      if (*limit > 100000)
-        throw BadParameter("limit: got '" + value + "', expected at most 100000");
-      query.limit = static_cast<int>(*limit);
-    } else {
-      throw BadParameter(key + ": unknown filter; expected procedure, status, unit or limit");
+  try {
+    query = parse_run_history_query(target.query);
+  } catch (const std::invalid_argument& e) {
+    throw BadParameter(e.what());
+  }
+  return {200, run_history_page(store_, query)};
+}
+
+ApiResponse DaemonApi::list_specs() const {
+  nlohmann::json specs = nlohmann::json::array();
+  nlohmann::json refused = nlohmann::json::array();
+  // A spec file that does not load is listed with its reason: the others stay usable.
+  for (const auto& name : runs::product_spec_names(specs_dir_)) {
+    try {
+      specs.push_back(runs::load_product_spec(specs_dir_ / (name + ".yaml")).to_json());
+    } catch (const std::exception& e) {
+      refused.push_back({{"name", name}, {"error", e.what()}});
     }
   }
-  nlohmann::json runs = nlohmann::json::array();
-  for (const auto& run : store_.list_runs(query)) runs.push_back(storage::to_json(run));
-  return {200, {{"runs", runs}}};
+  return {200, {{"specs", specs}, {"refused", refused}}};
 }
 
 ApiResponse DaemonApi::run_detail(const std::string& id) const {

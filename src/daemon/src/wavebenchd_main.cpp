@@ -71,6 +71,7 @@ int run(const daemon::DaemonOptions& options) {
   setup.launcher = daemon::make_executor_run_launcher();
   setup.bench_check = daemon::make_commissioning_check();
   setup.runs_dir = options.runs_dir;
+  setup.specs_dir = options.specs_dir;
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;
   setup.config_text = config.text;
@@ -132,6 +133,7 @@ int main(int argc, char** argv) {
   std::string runs_dir = options.runs_dir.string();
   std::string token_file;
   std::string log_dir;
+  std::string specs_dir;
   app.add_option("--config", options.config,
                  "bench config (YAML), or 'sim' for the in-process simulated bench")
       ->required();
@@ -148,6 +150,9 @@ int main(int argc, char** argv) {
                  "the console's files (default $WAVEBENCH_WEB_DIR, the installed ones, or the "
                  "build tree's web/)")
       ->check(CLI::ExistingDirectory);
+  app.add_option("--specs-dir", specs_dir,
+                 "product specs a run may name, one NAME.yaml each (default the shipped "
+                 "specs of the shipped configs)");
   app.add_flag("--verbose", options.verbose, "debug logging");
   app.add_flag("--allow-remote", options.allow_remote,
                "allow --listen on an address other machines can reach (logged as a warning)");
@@ -179,6 +184,7 @@ int main(int argc, char** argv) {
   options.token_file = token_file;
   options.log_dir = log_dir;
   options.web_root = web_root;
+  options.specs_dir = specs_dir;
   int rc = 1;
   try {
     rc = run(options);

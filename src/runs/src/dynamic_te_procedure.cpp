@@ -16,17 +16,34 @@ constexpr double kTwoPi = 2 * std::numbers::pi;
 constexpr std::size_t kTracePoints = 4000;  // TE trace kept in results.json for plots
 }  // namespace
 
+namespace {
+
+// The one declaration of the options: parses them, and describes them for the schema.
+void declare(OptionReader& r, DynamicTeOptions& o) {
+  r.number("input_rpm", o.input_rpm, 0, 1e5, false, {"rpm", "constant input speed"});
+  r.number("run_in_s", o.run_in_s, 0, 3600, true,
+           {"s", "at speed before recording (speed and temperature settle)"});
+  r.number("output_revolutions", o.output_revolutions, 1, 1000, true,
+           {"", "output revolutions recorded for the TE trace and its order spectrum"});
+  r.number("load_nm", o.load_nm, 0, 1e4, true, {"N·m", "brake torque during the run"});
+  r.integer("max_peaks", o.max_peaks, 1, 200, {"", "largest peaks of the order spectrum reported"});
+  r.integer("harmonics", o.harmonics, 1, 20,
+            {"", "harmonics of the output 1/rev and of the mesh named in the spectrum"});
+}
+
+}  // namespace
+
+std::vector<OptionSpec> DynamicTeOptions::schema() {
+  DynamicTeOptions o;
+  OptionReader r("dynamic");
+  declare(r, o);
+  return r.described();
+}
+
 DynamicTeOptions DynamicTeOptions::from_json(const nlohmann::json& options) {
   DynamicTeOptions o;
-  OptionReader r(
-      options, "dynamic",
-      {"input_rpm", "run_in_s", "output_revolutions", "load_nm", "max_peaks", "harmonics"});
-  r.number("input_rpm", o.input_rpm, 0, 1e5, false);
-  r.number("run_in_s", o.run_in_s, 0, 3600);
-  r.number("output_revolutions", o.output_revolutions, 1, 1000);
-  r.number("load_nm", o.load_nm, 0, 1e4);
-  r.integer("max_peaks", o.max_peaks, 1, 200);
-  r.integer("harmonics", o.harmonics, 1, 20);
+  OptionReader r(options, "dynamic", schema());
+  declare(r, o);
   return o;
 }
 

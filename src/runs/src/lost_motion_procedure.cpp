@@ -81,6 +81,36 @@ std::string short_ladder_message(std::size_t rungs, const bench::BenchDescriptio
 
 }  // namespace
 
+namespace {
+
+// The one declaration of the options: parses them, and describes them for the schema. Ladder
+// torques are > 0: a brake at zero gives no torque sign to fit.
+void declare(OptionReader& r, LostMotionOptions& o) {
+  r.numbers("torque_fractions", o.torque_fractions, 0, 2, false, 4,
+            {"", "brake torque ladder as fractions of the rated torque"});
+  r.numbers("torques_nm", o.torques_nm, 0, 1e4, false, 4,
+            {"N·m", "explicit brake torque ladder; overrides the fractions (empty: use them)"});
+  r.number("input_speed_rad_s", o.input_speed_rad_s, 0, 1e4, false,
+           {"rad/s", "input speed while twisting (slow)"});
+  r.number("run_in_output_rad", o.run_in_output_rad, 0, 1, false,
+           {"rad", "output travel before the window in each direction (takes up the twist)"});
+  r.number("window_periods", o.window_periods, 0, 1000, false,
+           {"", "mesh periods of the output averaged in each window"});
+  r.number("lost_motion_fraction", o.lost_motion_fraction, 0, 1, false,
+           {"", "lost motion is reported at ± this fraction of the rated torque"});
+  r.number("brake_settle_s", o.brake_settle_s, 0, 600, true,
+           {"s", "wait after a new brake torque"});
+}
+
+}  // namespace
+
+std::vector<OptionSpec> LostMotionOptions::schema() {
+  LostMotionOptions o;
+  OptionReader r("lost-motion");
+  declare(r, o);
+  return r.described();
+}
+
 LostMotionOptions LostMotionOptions::from_json(const nlohmann::json& options) {
   LostMotionOptions o;
   nlohmann::json given = options;
@@ -89,27 +119,8 @@ LostMotionOptions LostMotionOptions::from_json(const nlohmann::json& options) {
       given["torques_nm"].empty()) {
     given.erase("torques_nm");
   }
-  OptionReader r(given, "lost-motion",
-                 {"torque_fractions", "torques_nm", "input_speed_rad_s", "run_in_output_rad",
-                  "window_periods", "lost_motion_fraction", "brake_settle_s"});
-  r.numbers("torque_fractions", o.torque_fractions, 0, 2, 4);
-  r.numbers("torques_nm", o.torques_nm, 0, 1e4, 4);
-  r.number("input_speed_rad_s", o.input_speed_rad_s, 0, 1e4, false);
-  r.number("run_in_output_rad", o.run_in_output_rad, 0, 1, false);
-  r.number("window_periods", o.window_periods, 0, 1000, false);
-  r.number("lost_motion_fraction", o.lost_motion_fraction, 0, 1, false);
-  r.number("brake_settle_s", o.brake_settle_s, 0, 600);
-  for (const auto* list : {&o.torque_fractions, &o.torques_nm}) {
-    for (double t : *list) {
-      if (!(t > 0)) {
-        throw std::invalid_argument(
-            std::string("lost-motion.") +
-            (list == &o.torques_nm ? "torques_nm" : "torque_fractions") + ": got " +
-            nlohmann::json(*list).dump() +
-            ", expected torques > 0 (a brake at zero gives no torque sign to fit)");
-      }
-    }
-  }
+  OptionReader r(given, "lost-motion", schema());
+  declare(r, o);
   return o;
 }
 

@@ -1,5 +1,6 @@
 #include "parsed_request.hpp"
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -13,6 +14,21 @@ namespace {
 // Keys of a request's options that belong to the run, not to the procedure.
 constexpr const char* kLimitsKey = "limits";
 constexpr const char* kCalibrateKey = "calibrate_twin";
+constexpr const char* kLostMotionFractionKey = "lost_motion_fraction";
+
+// The spec's lost motion is measured at its fraction of rated torque: the run measures there.
+void apply_lost_motion_fraction(const ProductSpec& spec, nlohmann::json& options) {
+  const double fraction = *spec.lost_motion_fraction;
+  const auto it = options.find(kLostMotionFractionKey);
+  if (it == options.end()) {
+    options[kLostMotionFractionKey] = fraction;
+  } else if (!it->is_number() || std::abs(it->get<double>() - fraction) > 1e-12) {
+    throw std::invalid_argument(std::string("lost-motion.") + kLostMotionFractionKey + ": got '" +
+                                quoted_value(*it) + "', expected " +
+                                nlohmann::json(fraction).dump() + " (spec " + spec.name +
+                                " measures lost motion at that fraction of rated torque)");
+  }
+}
 
 }  // namespace
 
@@ -22,10 +38,11 @@ ParsedRequest parse_request(const RunRequest& request) {
                                 "', expected an object of option keys");
   }
   nlohmann::json options = request.options;
-  nlohmann::json limits = nlohmann::json::object();
+  nlohmann::json limits = request.spec ? request.spec->run_limits() : nlohmann::json::object();
   if (options.contains(kLimitsKey)) {
-    limits = options[kLimitsKey];
-    validate_limits(limits);
+    validate_limits(options[kLimitsKey]);
+    // The request's own limits on top of the spec's (a tighter check for one run).
+    for (const auto& [key, value] : options[kLimitsKey].items()) limits[key] = value;
     options.erase(kLimitsKey);
   }
   bool calibrate = true;
@@ -38,20 +55,16 @@ ParsedRequest parse_request(const RunRequest& request) {
     calibrate = options[kCalibrateKey].get<bool>();
     options.erase(kCalibrateKey);
   }
-  if (request.procedure == "static") {
-    const auto o = StaticTeOptions::from_json(options);
-    return {StaticTeProcedure(o), o.to_json(), limits, calibrate};
+  const ProcedureEntry* entry = find_procedure(request.procedure);
+  if (entry == nullptr) {
+    throw std::invalid_argument("procedure: got '" + quoted_value(request.procedure) +
+                                "', expected " + procedure_name_list());
   }
-  if (request.procedure == "dynamic") {
-    const auto o = DynamicTeOptions::from_json(options);
-    return {DynamicTeProcedure(o), o.to_json(), limits, calibrate};
+  if (request.spec && request.spec->lost_motion_fraction && request.procedure == "lost-motion") {
+    apply_lost_motion_fraction(*request.spec, options);
   }
-  if (request.procedure == "lost-motion") {
-    const auto o = LostMotionOptions::from_json(options);
-    return {LostMotionProcedure(o), o.to_json(), limits, calibrate};
-  }
-  throw std::invalid_argument("procedure: got '" + quoted_value(request.procedure) +
-                              "', expected static, dynamic or lost-motion");
+  auto parsed = entry->parse(options);
+  return {std::move(parsed.procedure), std::move(parsed.options), limits, calibrate};
 }
 
 }  // namespace wavebench::runs

@@ -3,16 +3,11 @@
 // shared by the request check and execute_run, which runs what the check accepted.
 
 #include <nlohmann/json.hpp>
-#include <variant>
 
-#include "wavebench/runs/dynamic_te_procedure.hpp"
-#include "wavebench/runs/lost_motion_procedure.hpp"
+#include "procedure_registry.hpp"
 #include "wavebench/runs/run_executor.hpp"
-#include "wavebench/runs/static_te_procedure.hpp"
 
 namespace wavebench::runs {
-
-using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure>;
 
 struct ParsedRequest {
   AnyProcedure procedure;

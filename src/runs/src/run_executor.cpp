@@ -99,6 +99,15 @@ void write_results_if_possible(storage::RunStore& store, const std::string& id,
   }
 }
 
+// results.json "spec": what the verdict was judged against.
+nlohmann::json spec_json(const ProductSpec& spec) {
+  const auto j = spec.to_json();
+  return {{"name", j["name"]},
+          {"model", j["model"]},
+          {"lost_motion_at_percent", j["lost_motion_at_percent"]},
+          {"limits", j["limits"]}};
+}
+
 }  // namespace
 
 RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunRequest& request,
@@ -110,7 +119,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
 
   RunOutcome outcome;
   outcome.run_id = store.create_run(request.procedure, description.unit_serial, request.config_text,
-                                    parsed.limits.dump());
+                                    parsed.limits.dump(), request.spec ? request.spec->name : "");
   const auto paths = store.paths(outcome.run_id);
   outcome.dir = paths.dir;
   const auto report_progress = [&](const std::string& phase, double fraction) {
@@ -136,7 +145,8 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"simulated_clock", description.simulated_clock},
       {"absent_channels", bench.absent_channels()},
       {"options", parsed.procedure_options},
-      {"limits", parsed.limits}};
+      {"limits", parsed.limits},
+      {"spec", request.spec ? spec_json(*request.spec) : nlohmann::json()}};
   ProcedureResult procedure_result;
   nlohmann::json twin_json;
   std::optional<storage::SampleLogWriter> writer;
@@ -250,6 +260,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       results["limit_checks"] = verdict.checks;
       results["pass"] = pass ? nlohmann::json(*pass) : nlohmann::json();
     }
+    results["verdict"] = pass ? nlohmann::json(*pass ? "PASS" : "FAIL") : nlohmann::json();
     write_results_if_possible(store, outcome.run_id, results);
     try {
       store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);

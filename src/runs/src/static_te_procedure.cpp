@@ -92,26 +92,50 @@ procedures::StaticTePoint average_window(bench::Bench& bench, SampleRecorder& re
 
 }  // namespace
 
+namespace {
+
+// The one declaration of the options: parses them, and describes them for the schema.
+void declare(OptionReader& r, StaticTeOptions& o) {
+  r.integer("positions", o.positions, 2, 3600,
+            {"", "positions equally spaced over one output revolution"});
+  r.numbers("loads_nm", o.loads_nm, 0, 1e4, true, 1,
+            {"N·m", "brake torque of each pair of passes (forward, then reverse)"});
+  r.number("window_s", o.window_s, 0, 600, false,
+           {"s", "θ_in, θ_out and torque averaged over this at each settled position"});
+  r.number("move_speed_rad_s", o.move_speed_rad_s, 0, 1e4, false,
+           {"rad/s", "input profile velocity between positions"});
+  r.number("run_up_steps", o.run_up_steps, 0, 1, false,
+           {"", "run-up before a pass, in position steps (approach side)"});
+  r.number("approach_rad", o.approach_rad, 0, 1e3, true,
+           {"rad", "input angle of the slow final approach (no overshoot across the backlash)"});
+  r.number("approach_speed_rad_s", o.approach_speed_rad_s, 0, 1e4, false,
+           {"rad/s", "input speed of the slow final approach"});
+  r.number("brake_settle_s", o.brake_settle_s, 0, 600, true,
+           {"s", "wait after a new brake torque, before the run-up move"});
+  r.number("settle_block_s", o.settle_block_s, 0, 10, false,
+           {"s", "the settle detector sees means over blocks this long (encoder noise)"});
+  r.number("settle_max_speed_rad_s", o.settle.max_speed_rad_s, 0, 1e3, false,
+           {"rad/s", "settled: output speed under this ..."});
+  r.number("settle_max_drift_rad", o.settle.max_drift_rad, 0, 1, false,
+           {"rad", "... and output drift under this ..."});
+  r.number("settle_window_s", o.settle.window_s, 0, 600, false, {"s", "... for this long"});
+  r.number("max_settle_s", o.settle.max_settle_s, 0, 3600, false,
+           {"s", "otherwise averaged anyway after this, and counted as a settle timeout"});
+}
+
+}  // namespace
+
+std::vector<OptionSpec> StaticTeOptions::schema() {
+  StaticTeOptions o;
+  OptionReader r("static");
+  declare(r, o);
+  return r.described();
+}
+
 StaticTeOptions StaticTeOptions::from_json(const nlohmann::json& options) {
   StaticTeOptions o;
-  OptionReader r(
-      options, "static",
-      {"positions", "loads_nm", "window_s", "move_speed_rad_s", "run_up_steps", "approach_rad",
-       "approach_speed_rad_s", "brake_settle_s", "settle_block_s", "settle_max_speed_rad_s",
-       "settle_max_drift_rad", "settle_window_s", "max_settle_s"});
-  r.integer("positions", o.positions, 2, 3600);
-  r.numbers("loads_nm", o.loads_nm, 0, 1e4, 1);
-  r.number("window_s", o.window_s, 0, 600, false);
-  r.number("move_speed_rad_s", o.move_speed_rad_s, 0, 1e4, false);
-  r.number("run_up_steps", o.run_up_steps, 0, 1, false);
-  r.number("approach_rad", o.approach_rad, 0, 1e3);
-  r.number("approach_speed_rad_s", o.approach_speed_rad_s, 0, 1e4, false);
-  r.number("brake_settle_s", o.brake_settle_s, 0, 600);
-  r.number("settle_block_s", o.settle_block_s, 0, 10, false);
-  r.number("settle_max_speed_rad_s", o.settle.max_speed_rad_s, 0, 1e3, false);
-  r.number("settle_max_drift_rad", o.settle.max_drift_rad, 0, 1, false);
-  r.number("settle_window_s", o.settle.window_s, 0, 600, false);
-  r.number("max_settle_s", o.settle.max_settle_s, 0, 3600, false);
+  OptionReader r(options, "static", schema());
+  declare(r, o);
   o.settle.validate();
   return o;
 }

@@ -4,12 +4,15 @@
 #include <sys/stat.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <cstdint>
 #include <ctime>
 #include <fstream>
 #include <stdexcept>
 #include <system_error>
+#include <vector>
 
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/storage/sha256.hpp"
@@ -34,6 +37,19 @@ CREATE TABLE IF NOT EXISTS runs (
 );
 CREATE INDEX IF NOT EXISTS runs_by_unit ON runs(unit_serial, started_at);
 CREATE INDEX IF NOT EXISTS runs_by_status ON runs(status);
+)sql";
+
+// Added after the first indexes were written: old index files get them on open (migrate()).
+constexpr const char* kAddedColumns[][2] = {{"spec", "TEXT NOT NULL DEFAULT ''"}};
+
+// History pages are newest first (by id) under one filter or two: each filter column leads an
+// index that ends in id, so SQLite walks it in order and stops after the page.
+constexpr const char* kHistoryIndexes = R"sql(
+CREATE INDEX IF NOT EXISTS runs_by_unit_id ON runs(unit_serial, id);
+CREATE INDEX IF NOT EXISTS runs_by_procedure_id ON runs(procedure, id);
+CREATE INDEX IF NOT EXISTS runs_by_status_id ON runs(status, id);
+CREATE INDEX IF NOT EXISTS runs_by_spec_id ON runs(spec, id);
+CREATE INDEX IF NOT EXISTS runs_by_pass_id ON runs(pass, id);
 )sql";
 
 // Prepared statement that finalizes itself; binds text by index.
@@ -70,6 +86,7 @@ class Statement {
     const auto* p = sqlite3_column_text(stmt_, col);
     return p ? reinterpret_cast<const char*>(p) : "";
   }
+  std::int64_t int64(int col) const { return sqlite3_column_int64(stmt_, col); }
   std::optional<bool> optional_bool(int col) const {
     if (sqlite3_column_type(stmt_, col) == SQLITE_NULL) return std::nullopt;
     return sqlite3_column_int(stmt_, col) != 0;
@@ -105,7 +122,7 @@ std::string format_utc(std::chrono::system_clock::time_point t, bool compact) {
 
 constexpr const char* kColumns =
     "id, started_at, finished_at, unit_serial, procedure, status, reason, pass, limits_json, "
-    "software_version, config_hash";
+    "software_version, config_hash, spec";
 
 RunRecord read_row(const Statement& s) {
   RunRecord r;
@@ -120,7 +137,56 @@ RunRecord read_row(const Statement& s) {
   r.limits_json = s.text(8);
   r.software_version = s.text(9);
   r.config_hash = s.text(10);
+  r.spec = s.text(11);
   return r;
+}
+
+bool has_column(sqlite3* db, const std::string& column) {
+  Statement s(db, "SELECT 1 FROM pragma_table_info('runs') WHERE name = ?1");
+  s.bind(1, column);
+  return s.step();
+}
+
+void migrate(sqlite3* db) {
+  for (const auto& [column, type] : kAddedColumns) {
+    if (!has_column(db, column)) {
+      exec(db, (std::string("ALTER TABLE runs ADD COLUMN ") + column + " " + type).c_str());
+    }
+  }
+  exec(db, kHistoryIndexes);
+}
+
+// The WHERE clause of a query with only the filters it sets (so that SQLite can pick the
+// index of one), and their values in parameter order.
+struct Filters {
+  std::string where;
+  std::vector<std::string> values;
+};
+
+Filters filters_of(const RunQuery& q) {
+  Filters f;
+  const auto add = [&](const char* condition, const std::optional<std::string>& value) {
+    if (!value) return;
+    f.where += (f.where.empty() ? " WHERE " : " AND ") + std::string(condition);
+    f.values.push_back(*value);
+  };
+  add("procedure = ?", q.procedure);
+  add("unit_serial = ?", q.unit_serial);
+  if (q.status) add("status = ?", std::string(run_status_name(*q.status)));
+  add("spec = ?", q.spec);
+  add("id >= ?", q.from_id);
+  add("id <= ?", q.to_id);
+  if (q.verdict) {
+    f.where += f.where.empty() ? " WHERE " : " AND ";
+    f.where += *q.verdict == RunVerdict::kNone   ? "pass IS NULL"
+               : *q.verdict == RunVerdict::kPass ? "pass = 1"
+                                                 : "pass = 0";
+  }
+  return f;
+}
+
+void bind_filters(Statement& s, const Filters& f) {
+  for (std::size_t i = 0; i < f.values.size(); ++i) s.bind(static_cast<int>(i + 1), f.values[i]);
 }
 
 }  // namespace
@@ -159,6 +225,8 @@ nlohmann::json to_json(const RunRecord& run) {
                       {"limits", nlohmann::json::parse(run.limits_json, nullptr, false)},
                       {"software_version", run.software_version},
                       {"config_hash", run.config_hash}};
+  j["spec"] = run.spec.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.spec);
+  j["verdict"] = run.pass ? nlohmann::json(*run.pass ? "PASS" : "FAIL") : nlohmann::json(nullptr);
   j["pass"] = run.pass ? nlohmann::json(*run.pass) : nlohmann::json(nullptr);
   return j;
 }
@@ -178,6 +246,7 @@ RunStore::RunStore(std::filesystem::path root, std::string software_version)
   sqlite3_busy_timeout(db_, 5000);
   exec(db_, "PRAGMA journal_mode=WAL; PRAGMA synchronous=FULL;");
   exec(db_, kSchema);
+  migrate(db_);
   recover();
 }
 
@@ -218,7 +287,8 @@ std::string RunStore::claim_id() {
 }
 
 std::string RunStore::create_run(const std::string& procedure, const std::string& unit_serial,
-                                 const std::string& config_text, const std::string& limits_json) {
+                                 const std::string& config_text, const std::string& limits_json,
+                                 const std::string& spec) {
   if (!nlohmann::json::accept(limits_json)) {
     throw std::invalid_argument("run store: limits_json = '" + limits_json +
                                 "' is not JSON; expected an object");
@@ -232,13 +302,14 @@ std::string RunStore::create_run(const std::string& procedure, const std::string
   run.limits_json = limits_json;
   run.software_version = software_version_;
   run.config_hash = sha256_hex(config_text);
+  run.spec = spec;
   const auto p = paths(run.id);
   try {
     write_file_atomically(p.config, config_text);
     write_status_file(run);
 
     Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
-                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7)");
+                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7, ?8)");
     s.bind(1, run.id);
     s.bind(2, run.started_at);
     s.bind(3, run.unit_serial);
@@ -246,6 +317,7 @@ std::string RunStore::create_run(const std::string& procedure, const std::string
     s.bind(5, run.limits_json);
     s.bind(6, run.software_version);
     s.bind(7, run.config_hash);
+    s.bind(8, run.spec);
     s.step();
   } catch (...) {
     // No orphan folder (a full disk would otherwise collect one per refused start), and only
@@ -316,18 +388,26 @@ std::optional<RunRecord> RunStore::find_run(const std::string& id) const {
 }
 
 std::vector<RunRecord> RunStore::list_runs(const RunQuery& query) const {
-  std::string sql = std::string("SELECT ") + kColumns +
-                    " FROM runs WHERE (?1 IS NULL OR procedure = ?1) AND "
-                    "(?2 IS NULL OR unit_serial = ?2) AND (?3 IS NULL OR status = ?3) "
-                    "ORDER BY id DESC";
-  if (query.limit > 0) sql += " LIMIT " + std::to_string(query.limit);
+  const Filters filters = filters_of(query);
+  std::string sql =
+      std::string("SELECT ") + kColumns + " FROM runs" + filters.where + " ORDER BY id DESC";
+  if (query.limit > 0 || query.offset > 0) {
+    sql += " LIMIT " + std::to_string(query.limit > 0 ? query.limit : -1) + " OFFSET " +
+           std::to_string(std::max(query.offset, 0));
+  }
   Statement s(db_, sql);
-  if (query.procedure) s.bind(1, *query.procedure);
-  if (query.unit_serial) s.bind(2, *query.unit_serial);
-  if (query.status) s.bind(3, std::string(run_status_name(*query.status)));
+  bind_filters(s, filters);
   std::vector<RunRecord> out;
   while (s.step()) out.push_back(read_row(s));
   return out;
+}
+
+std::size_t RunStore::count_runs(const RunQuery& query) const {
+  const Filters filters = filters_of(query);
+  Statement s(db_, std::string("SELECT COUNT(*) FROM runs") + filters.where);
+  bind_filters(s, filters);
+  s.step();
+  return static_cast<std::size_t>(s.int64(0));
 }
 
 void RunStore::write_status_file(const RunRecord& run) const {

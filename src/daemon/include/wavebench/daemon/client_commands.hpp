@@ -26,15 +26,16 @@ struct ClientContext {
 int client_status(const ClientContext& ctx);
 // options: "key=value"; a value that parses as JSON is sent as such (4, [0,60], true), any
 // other as a string.
+// spec: a product spec's name (GET /api/specs); empty: none.
 int client_start(const ClientContext& ctx, const std::string& procedure,
-                 const std::vector<std::string>& options, bool wait);
+                 const std::vector<std::string>& options, bool wait, const std::string& spec = {});
 int client_abort(const ClientContext& ctx);
 int client_stop(const ClientContext& ctx);
 int client_reset(const ClientContext& ctx);
 
 struct RunsFilter {
   std::optional<std::string> procedure, status, unit;
-  int limit = 0;
+  int limit = 0;  // 0: the API's default page (50)
 };
 int client_runs(const ClientContext& ctx, const RunsFilter& filter);
 // Writes samples.csv (format "csv") or samples.json ("json"), results.json and run.json into

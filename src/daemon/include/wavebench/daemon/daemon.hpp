@@ -26,6 +26,7 @@ struct DaemonSetup {
   std::unique_ptr<RunLauncher> launcher;
   BenchCheck bench_check;  // GET /api/bench/check; none: 503
   std::filesystem::path runs_dir;
+  std::filesystem::path specs_dir;  // product specs a run may name; empty: the shipped ones
   std::string listen_address = "127.0.0.1";
   unsigned short port = kDefaultPort;  // 0 = ephemeral
   std::string token;

@@ -3,11 +3,15 @@
 // transport (http_server.hpp carries it over Boost.Beast).
 //
 //   GET  /api/status                         state, bench, current run, fault, acquisition
-//   POST /api/runs      {procedure, options}  start a run                       (token)
+//   POST /api/runs      {procedure, options, spec}  start a run                 (token)
 //   POST /api/abort                           trip the bench: "operator abort" (token)
 //   POST /api/stop                            safe state: "operator stop"      (token)
 //   POST /api/reset                           clear a fault / reconnect        (token)
-//   GET  /api/runs?procedure=&status=&unit=&limit=
+//   GET  /api/runs?unit=&procedure=&spec=&verdict=&status=&from=&to=&offset=&limit=
+//                                            a page of the history, newest first, and its total
+//                                            (run_history_query.hpp)
+//   GET  /api/procedures                      each procedure's options schema
+//   GET  /api/specs                           the product specs and their limits
 //   GET  /api/runs/{id}                       record + results.json
 //   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
 //                                             page_gaps counts gaps within it)
@@ -21,6 +25,7 @@
 // kMaxConcurrentReads low-priority threads (low_priority_reads.hpp); when all are busy the
 // others get 503 at once, so status, abort and stop are always answered.
 
+#include <filesystem>
 #include <functional>
 #include <memory>
 #include <nlohmann/json.hpp>
@@ -71,8 +76,9 @@ class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
 
+  // `specs_dir`: the product specs a run may name (empty: runs::default_specs_dir()).
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
-            HostCheck host_check = HostCheck(),
+            HostCheck host_check = HostCheck(), std::filesystem::path specs_dir = {},
             std::shared_ptr<const ConsoleFiles> console = nullptr, SoftwareIdentity software = {});
   // Thread-safe; may block while a run is being started. Never throws: every failure is an
   // error answer.
@@ -88,6 +94,7 @@ class DaemonApi {
   ApiResponse reset() const;
   ApiResponse bench_check() const;
   ApiResponse list_runs(const HttpTarget& target) const;
+  ApiResponse list_specs() const;
   ApiResponse run_detail(const std::string& id) const;
   ApiResponse run_samples(const std::string& id, const HttpTarget& target) const;
   ApiResponse live(const HttpTarget& target) const;
@@ -97,6 +104,7 @@ class DaemonApi {
   LiveSampleBuffer& live_;
   std::string token_;
   HostCheck host_check_;
+  std::filesystem::path specs_dir_;
   std::shared_ptr<LowPriorityReads> reads_;
   std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
   SoftwareIdentity software_;

@@ -1,6 +1,6 @@
 #pragma once
 // wavebenchd's command line: --config BENCH.yaml|sim [--runs DIR] [--listen HOST:PORT]
-// [--token-file F] [--log-dir D].
+// [--token-file F] [--log-dir D] [--specs-dir D].
 
 #include <filesystem>
 #include <string>
@@ -25,6 +25,7 @@ struct DaemonOptions {
   ListenAddress listen;
   std::filesystem::path token_file;  // empty: default_token_file()
   std::filesystem::path log_dir;     // empty: <runs_dir>/logs
+  std::filesystem::path specs_dir;   // empty: runs::default_specs_dir()
   bool verbose = false;
   // Listening beyond loopback exposes the bench to the network: only when asked for.
   bool allow_remote = false;

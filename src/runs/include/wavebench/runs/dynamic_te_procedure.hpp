@@ -11,6 +11,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/dynamic_te_analysis.hpp"
 #include "wavebench/procedures/dynamic_te_input.hpp"
+#include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
 
@@ -27,6 +28,8 @@ struct DynamicTeOptions {
   int harmonics = 3;
 
   static DynamicTeOptions from_json(const nlohmann::json& options);
+  // The options as the console shows them: one entry per key from_json accepts, in order.
+  static std::vector<OptionSpec> schema();
   nlohmann::json to_json() const;
 };
 

@@ -12,6 +12,7 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
 
@@ -28,6 +29,8 @@ struct LostMotionOptions {
   double brake_settle_s = 0.3;
 
   static LostMotionOptions from_json(const nlohmann::json& options);
+  // The options as the console shows them: one entry per key from_json accepts, in order.
+  static std::vector<OptionSpec> schema();
   nlohmann::json to_json() const;
 };
 

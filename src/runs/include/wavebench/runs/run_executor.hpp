@@ -9,9 +9,11 @@
 #include <filesystem>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "wavebench/bench/bench.hpp"
+#include "wavebench/runs/product_spec.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::runs {
@@ -28,6 +30,10 @@ struct RunRequest {
   std::string config_text;  // the bench config the run started with (copied, hashed)
   bool twin = true;         // run the twin beside the bench
   bool report = true;       // write report.html and its plots into the run folder
+  // The product spec the run is accepted against (find_product_spec): its limits, with the
+  // request's own "limits" on top, give the verdict; its lost_motion_at sets the lost-motion
+  // procedure's lost_motion_fraction.
+  std::optional<ProductSpec> spec;
 };
 
 struct RunProgress {

@@ -7,6 +7,8 @@
 //   lost_motion_arcmin            lost motion at ±x % of rated (lost-motion procedure)
 //   min_stiffness_nm_per_rad      K1 of the lost-motion fit
 //   dynamic_p2p_arcsec, dynamic_rms_arcsec
+//   twin_residual_rms_arcsec      RMS of measured − predicted TE of the calibrated twin
+//                                 (twin.calibration.rms_after_arcsec; runs with calibration)
 
 #include <nlohmann/json.hpp>
 #include <optional>

@@ -11,6 +11,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/settle_detector.hpp"
 #include "wavebench/procedures/static_te_statistics.hpp"
+#include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
 
@@ -33,6 +34,8 @@ struct StaticTeOptions {
   // From the request's options ({"positions": 24, "loads_nm": [0, 60], ...}); missing keys keep
   // the defaults. Throws std::invalid_argument naming the key, the value and what was expected.
   static StaticTeOptions from_json(const nlohmann::json& options);
+  // The options as the console shows them: one entry per key from_json accepts, in order.
+  static std::vector<OptionSpec> schema();
   nlohmann::json to_json() const;
 };
 

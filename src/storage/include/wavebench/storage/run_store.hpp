@@ -33,17 +33,26 @@ struct RunRecord {
   std::string procedure;
   RunStatus status = RunStatus::kRunning;
   std::string reason;
-  std::optional<bool> pass;
+  std::optional<bool> pass;  // the verdict: PASS, FAIL, none (no limit applied, not complete)
   std::string limits_json = "{}";
+  std::string spec;  // the product spec the run was accepted against; empty: none
   std::string software_version;
   std::string config_hash;  // SHA-256 of the config text, hex
 };
+
+enum class RunVerdict { kPass, kFail, kNone };
 
 struct RunQuery {
   std::optional<std::string> procedure;
   std::optional<std::string> unit_serial;
   std::optional<RunStatus> status;
+  std::optional<std::string> spec;
+  std::optional<RunVerdict> verdict;
+  // Run ids (UTC start times) from and to, inclusive: a prefix of an id bounds by it, e.g.
+  // from "20261124" to "20261124~" is every run started on 2026-11-24.
+  std::optional<std::string> from_id, to_id;
   int limit = 0;  // 0 = all; newest first
+  int offset = 0;
 };
 
 struct RunPaths {
@@ -65,7 +74,8 @@ class RunStore {
   // step fails (disk full, read-only, index locked) it removes what it created and rethrows:
   // no folder without an index row.
   std::string create_run(const std::string& procedure, const std::string& unit_serial,
-                         const std::string& config_text, const std::string& limits_json = "{}");
+                         const std::string& config_text, const std::string& limits_json = "{}",
+                         const std::string& spec = {});
   void write_results(const std::string& id, const nlohmann::json& results);
   // status is kComplete or kAborted; throws std::invalid_argument for an unknown id. The
   // index is updated first; status.json is rewritten where it still can be (a full disk does
@@ -77,6 +87,8 @@ class RunStore {
 
   std::optional<RunRecord> find_run(const std::string& id) const;
   std::vector<RunRecord> list_runs(const RunQuery& query = {}) const;
+  // How many runs match `query`, regardless of its limit and offset.
+  std::size_t count_runs(const RunQuery& query = {}) const;
   RunPaths paths(const std::string& id) const;
   const std::filesystem::path& root() const { return root_; }
 

@@ -1,0 +1,17 @@
+#pragma once
+// The procedures a run may name, as the API serves them (GET /api/procedures): name, title,
+// description and options schema, from the same declarations that parse the options.
+
+#include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
+
+namespace wavebench::runs {
+
+// {"procedures": [{"name", "title", "description", "options": [OptionSpec::to_json(), ...]}]}
+nlohmann::json procedures_json();
+
+// "static", "dynamic", "lost-motion", in the registry's order.
+std::vector<std::string> procedure_names();
+
+}  // namespace wavebench::runs

@@ -1,0 +1,73 @@
+#include "procedure_registry.hpp"
+
+#include <array>
+
+#include "wavebench/runs/procedure_catalogue.hpp"
+
+namespace wavebench::runs {
+
+namespace {
+
+template <class Options, class Procedure>
+ParsedProcedure parse_as(const nlohmann::json& options) {
+  const auto o = Options::from_json(options);
+  return {Procedure(o), o.to_json()};
+}
+
+const std::array<ProcedureEntry, 3> kProcedures{{
+    {"static", "Static TE",
+     "Transmission error at equally spaced output positions, settled, forward and reverse, at "
+     "each brake load (bench.md §4)",
+     &StaticTeOptions::schema, &parse_as<StaticTeOptions, StaticTeProcedure>},
+    {"dynamic", "Dynamic TE",
+     "Transmission error at constant input speed over whole output revolutions: trace, order "
+     "spectrum with named and aliased peaks",
+     &DynamicTeOptions::schema, &parse_as<DynamicTeOptions, DynamicTeProcedure>},
+    {"lost-motion", "Lost motion and stiffness",
+     "Torque–twist over a brake torque ladder in both directions: lost motion at ± a fraction "
+     "of rated torque and the stiffnesses K1, K2, K3",
+     &LostMotionOptions::schema, &parse_as<LostMotionOptions, LostMotionProcedure>},
+}};
+
+}  // namespace
+
+std::span<const ProcedureEntry> procedure_entries() {
+  return kProcedures;
+}
+
+const ProcedureEntry* find_procedure(std::string_view name) {
+  for (const auto& p : kProcedures) {
+    if (name == p.name) return &p;
+  }
+  return nullptr;
+}
+
+std::string procedure_name_list() {
+  std::string out;
+  for (std::size_t i = 0; i < kProcedures.size(); ++i) {
+    if (i > 0) out += i + 1 == kProcedures.size() ? " or " : ", ";
+    out += kProcedures[i].name;
+  }
+  return out;
+}
+
+nlohmann::json procedures_json() {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& p : kProcedures) {
+    nlohmann::json options = nlohmann::json::array();
+    for (const auto& o : p.options()) options.push_back(o.to_json());
+    list.push_back({{"name", p.name},
+                    {"title", p.title},
+                    {"description", p.description},
+                    {"options", options}});
+  }
+  return {{"procedures", list}};
+}
+
+std::vector<std::string> procedure_names() {
+  std::vector<std::string> out;
+  for (const auto& p : kProcedures) out.emplace_back(p.name);
+  return out;
+}
+
+}  // namespace wavebench::runs
