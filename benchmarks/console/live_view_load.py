@@ -1,0 +1,191 @@
+#!/usr/bin/python3
+"""Does the console disturb the bench? (issue #10) The same dynamic TE run on the in-process
+simulated bench on the real clock (1 kHz SYNC), twice in one go: once with no browser, once with
+N headless Chromium sessions on the console's live view (10-minute window). Per arm: SYNC
+lateness p50/p99/max and the skipped SYNC periods (the bench's own figures, /api/status, fresh
+daemon per arm), the samples lost (missed SYNCs, incomplete samples, log queue drops from
+results.json), and in the browser arm each session's frame rate counted in the page over the
+last 10 s (with the run's whole history in the plots). Prints the figures and the ratios
+browsers/none; the issue's targets: ratios <= 1.1, >= 30 frames/s.
+
+Usage: benchmarks/console/live_view_load.py BUILD_DIR [DURATION_S=600] [SESSIONS=5]"""
+import http.client
+import json
+import os
+import re
+import secrets
+import shutil
+import signal
+import subprocess
+import sys
+import tempfile
+import threading
+import time
+
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.support.ui import Select
+
+here = os.path.dirname(os.path.abspath(__file__))
+source = os.path.abspath(os.path.join(here, '..', '..'))
+
+
+def real_clock_config(work):
+    text = open(os.path.join(source, 'configs/benches/sim.yaml')).read()
+    text = re.sub(r'^clock: simulated', 'clock: real', text, flags=re.M)
+    text = text.replace('../', os.path.join(source, 'configs') + '/')
+    path = os.path.join(work, 'sim-real-clock.yaml')
+    open(path, 'w').write(text)
+    return path
+
+
+class Daemon:
+    def __init__(self, build, work, config):
+        self.work = work
+        self.token = secrets.token_hex(16)
+        token_file = os.path.join(work, 'daemon.token')
+        fd = os.open(token_file, os.O_WRONLY | os.O_CREAT | os.O_EXCL, 0o600)
+        with os.fdopen(fd, 'w') as f:
+            f.write(self.token + '\n')
+        self.process = subprocess.Popen(
+            [os.path.join(build, 'src/daemon/wavebenchd'), '--config', config, '--listen',
+             '127.0.0.1:0', '--runs', os.path.join(work, 'runs'), '--token-file', token_file,
+             '--web-root', os.path.join(build, 'web')],
+            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.port = None
+        for line in self.process.stdout:
+            m = re.search(r'listening on http://127\.0\.0\.1:(\d+)', line)
+            if m:
+                self.port = int(m.group(1))
+                break
+        if self.port is None:
+            raise RuntimeError('wavebenchd did not start')
+        threading.Thread(target=lambda: [None for _ in self.process.stdout], daemon=True).start()
+        self.url = f'http://127.0.0.1:{self.port}'
+
+    def call(self, method, path, body=None):
+        c = http.client.HTTPConnection('127.0.0.1', self.port, timeout=60)
+        headers = {'Host': f'127.0.0.1:{self.port}', 'Authorization': f'Bearer {self.token}'}
+        data = None
+        if body is not None:
+            data = json.dumps(body)
+            headers['Content-Type'] = 'application/json'
+        c.request(method, path, body=data, headers=headers)
+        r = c.getresponse()
+        answer = json.loads(r.read() or b'null')
+        c.close()
+        return r.status, answer
+
+    def stop(self):
+        self.process.send_signal(signal.SIGTERM)
+        try:
+            self.process.wait(timeout=30)
+        except subprocess.TimeoutExpired:
+            self.process.kill()
+
+
+def browser(url, profile):
+    options = webdriver.ChromeOptions()
+    options.binary_location = '/usr/bin/chromium'
+    for flag in ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic',
+                 '--no-first-run', '--disable-background-networking',
+                 '--disable-component-update', '--disable-sync', '--window-size=1400,1000',
+                 f'--user-data-dir={profile}']:
+        options.add_argument(flag)
+    driver = webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=options)
+    driver.get(url + '/')
+    time.sleep(2)
+    Select(driver.find_element('css selector', '#window')).select_by_value('600')
+    return driver
+
+
+def frame_rate(driver):
+    first = driver.execute_script('const s = window.wavebenchLive.stats(); '
+                                  'return [performance.now(), s.frames, s.draws];')
+    time.sleep(10)
+    last = driver.execute_script('const s = window.wavebenchLive.stats(); '
+                                 'return [performance.now(), s.frames, s.draws, s.points];')
+    seconds = (last[0] - first[0]) / 1000
+    return {'frames_per_s': (last[1] - first[1]) / seconds,
+            'redraws_per_s': (last[2] - first[2]) / seconds, 'points': last[3]}
+
+
+def arm(build, config, duration, sessions):
+    work = tempfile.mkdtemp(prefix='wavebench-liveload-')
+    daemon = Daemon(build, work, config)
+    drivers, profiles, rates = [], [], []
+    try:
+        for i in range(sessions):
+            profiles.append(tempfile.mkdtemp(prefix='wavebench-liveload-chromium-'))
+            drivers.append(browser(daemon.url, profiles[-1]))
+        revolutions = max(1.0, duration / 60.0)  # 100 rpm input, ratio 100: 60 s per output turn
+        status, answer = daemon.call('POST', '/api/runs', {
+            'procedure': 'dynamic',
+            'options': {'input_rpm': 100, 'run_in_s': 0, 'output_revolutions': revolutions}})
+        if status >= 300:
+            raise RuntimeError(f'start refused: {status} {answer}')
+        run_id = answer['run_id']
+        while True:
+            time.sleep(5)
+            _, s = daemon.call('GET', '/api/status')
+            if s.get('run') is None:
+                break
+            if drivers and (s['run'].get('progress') or 0) > 0.9 and not rates:
+                rates = [frame_rate(d) for d in drivers]
+        if drivers and not rates:
+            rates = [frame_rate(d) for d in drivers]
+        _, s = daemon.call('GET', '/api/status')
+        _, detail = daemon.call('GET', f'/api/runs/{run_id}')
+        acquisition = (detail.get('results') or {}).get('acquisition') or {}
+        a = s['acquisition']
+        return {
+            'status': detail['run']['status'],
+            'sync_lateness_p50_us': a['sync_lateness_p50_s'] * 1e6,
+            'sync_lateness_p99_us': a['sync_lateness_p99_s'] * 1e6,
+            'sync_lateness_max_us': a['sync_lateness_max_s'] * 1e6,
+            'sync_skipped': a['sync_skipped'],
+            'samples_lost': acquisition.get('missed_syncs', 0) +
+                            acquisition.get('log_queue_dropped', 0),
+            'incomplete_samples': acquisition.get('incomplete_samples', 0),
+            'samples_logged': acquisition.get('samples_logged', 0),
+            'browsers': rates,
+        }
+    finally:
+        for d in drivers:
+            d.quit()
+        daemon.stop()
+        for p in profiles:
+            shutil.rmtree(p, ignore_errors=True)
+        shutil.rmtree(work, ignore_errors=True)
+
+
+def main():
+    build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'build')
+    duration = float(sys.argv[2]) if len(sys.argv) > 2 else 600
+    sessions = int(sys.argv[3]) if len(sys.argv) > 3 else 5
+    work = tempfile.mkdtemp(prefix='wavebench-liveload-config-')
+    config = real_clock_config(work)
+    plain = arm(build, config, duration, 0)
+    print('no browser:', json.dumps(plain), flush=True)
+    loaded = arm(build, config, duration, sessions)
+    print(f'{sessions} browsers:', json.dumps(loaded), flush=True)
+    shutil.rmtree(work, ignore_errors=True)
+
+    def ratio(key):
+        return loaded[key] / plain[key] if plain[key] else float('inf') if loaded[key] else 1.0
+    print(f'dynamic run of {duration:.0f} s on the real clock (1 kHz SYNC):')
+    for key in ['sync_lateness_p50_us', 'sync_lateness_p99_us', 'sync_lateness_max_us']:
+        print(f'  {key}: {plain[key]:.1f} none, {loaded[key]:.1f} with {sessions} browsers '
+              f'(ratio {ratio(key):.2f})')
+    for key in ['sync_skipped', 'samples_lost', 'incomplete_samples', 'samples_logged']:
+        print(f'  {key}: {plain[key]} none, {loaded[key]} with {sessions} browsers')
+    for i, r in enumerate(loaded['browsers']):
+        print(f'  browser {i + 1}: {r["frames_per_s"]:.1f} frames/s, {r["redraws_per_s"]:.1f} '
+              f'redraws/s, {r["points"]} points in view')
+    print(f'  p99 ratio {ratio("sync_lateness_p99_us"):.2f} (target <= 1.1); samples lost '
+          f'{plain["samples_lost"]} -> {loaded["samples_lost"]}; min frame rate '
+          f'{min((r["frames_per_s"] for r in loaded["browsers"]), default=0):.1f} (target >= 30)')
+
+
+if __name__ == '__main__':
+    main()
