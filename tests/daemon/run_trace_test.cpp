@@ -10,6 +10,7 @@
 #include <numbers>
 #include <string>
 
+#include "daemon_fixture.hpp"
 #include "test_dir.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -160,6 +161,34 @@ TEST_F(RunTraceTest, TwinCurvesBeforeAndAfterCalibration) {
   EXPECT_NEAR(r.body["duration_s"].get<double>(), 20.0, 1e-9);
 
   EXPECT_EQ(run_twin_trace(*store_, id_, parse_http_target("/t?columns=0")).status, 400);
+}
+
+}  // namespace
+}  // namespace wavebench::daemon::testing
+
+namespace wavebench::daemon::testing {
+namespace {
+
+using RunTraceApiTest = DaemonFixture;
+
+TEST_F(RunTraceApiTest, TheTraceIsServedOverHttpAndBadColumnsAre400) {
+  const auto started =
+      client().post("/api/runs", {{"procedure", "static"}, {"options", {{"seconds", 0.3}}}});
+  ASSERT_EQ(started.status, 201) << started.body.dump();
+  const auto id = started.body["run_id"].get<std::string>();
+  ASSERT_TRUE(eventually([&] { return run_finished(); }));
+
+  const auto trace = client().get("/api/runs/" + id + "/trace?channels=torque,theta_in&columns=10");
+  ASSERT_EQ(trace.status, 200) << trace.body.dump();
+  EXPECT_EQ(trace.body["samples_in_range"], 300);
+  EXPECT_LE(trace.body["t_s"].size(), 20u);
+  EXPECT_EQ(trace.body["series"]["theta_in"].size(), trace.body["t_s"].size());
+
+  const auto bad = client().get("/api/runs/" + id + "/trace?columns=5000");
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_EQ(bad.body["detail"].get<std::string>().rfind("columns: got '5000'", 0), 0u);
+  EXPECT_EQ(client().get("/api/runs/" + id + "/twin").status, 200);
+  EXPECT_EQ(client().get("/api/runs/nope/trace").status, 404);
 }
 
 }  // namespace

@@ -15,7 +15,7 @@ const maxOf = (values) => {
 };
 
 function label(run) {
-  const when = (run.started_at || run.id).replace('T', ' ').replace(/:\d\d(\.\d+)?Z?$/, '');
+  const when = (run.started_at || run.id).replace('T', ' ').replace(/(\.\d+)?Z?$/, '');
   return `${run.unit_serial || '?'} ${when}`;
 }
 

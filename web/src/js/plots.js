@@ -18,7 +18,8 @@ function labelsPlugin(labels) {
         ctx.fillStyle = '#222';
         ctx.textAlign = 'center';
         for (const l of labels()) {
-          if (l.x < u.scales.x.min || l.x > u.scales.x.max || !(l.y > 0 || !u.scales.y.distr)) continue;
+          if (l.x < u.scales.x.min || l.x > u.scales.x.max) continue;
+          if (u.scales.y.distr === 3 && !(l.y > 0)) continue;
           const x = u.valToPos(l.x, 'x', true);
           const y = u.valToPos(l.y, 'y', true);
           if (!Number.isFinite(x) || !Number.isFinite(y)) continue;
