@@ -24,7 +24,7 @@ import urllib.request
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.by import By
-from selenium.webdriver.support.ui import WebDriverWait
+from selenium.webdriver.support.ui import Select, WebDriverWait
 
 WAVEBENCHD, WEB_ROOT, OUTPUT = (sys.argv[1:4] + [None] * 3)[:3]
 STATIC_OPTIONS = {"positions": 4, "loads_nm": [0], "window_s": 0.05}
@@ -185,14 +185,14 @@ class RunPagesTest(unittest.TestCase):
         self.shot("history")
 
         # A filter with no match empties the table; the page's URL keeps the filter.
-        select = self.browser.find_element(By.CSS_SELECTOR, "#filters select[name=procedure]")
-        select.find_element(By.CSS_SELECTOR, "option[value=dynamic]").click()
+        select = Select(self.browser.find_element(By.CSS_SELECTOR, "#filters select[name=procedure]"))
+        select.select_by_visible_text("dynamic")
         self.browser.find_element(By.CSS_SELECTOR, "#filters button[type=submit]").click()
         WebDriverWait(self.browser, 10).until(
             lambda b: "No runs match" in b.find_element(By.ID, "message").text)
         self.assertEqual(len(self.browser.find_elements(By.CSS_SELECTOR, "#runs tbody tr")), 0)
         self.assertIn("procedure=dynamic", self.browser.current_url)
-        select.find_element(By.XPATH, "option[text()='static']").click()
+        select.select_by_visible_text("static")
         self.browser.find_element(By.CSS_SELECTOR, "#filters button[type=submit]").click()
         WebDriverWait(self.browser, 10).until(
             lambda b: len(b.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) >= 2)
