@@ -23,11 +23,14 @@ import urllib.request
 
 from selenium import webdriver
 from selenium.webdriver.chrome.service import Service
+from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
 WAVEBENCHD, WEB_ROOT, OUTPUT = (sys.argv[1:4] + [None] * 3)[:3]
 STATIC_OPTIONS = {"positions": 4, "loads_nm": [0], "window_s": 0.05}
+# Short on the simulated clock: one output revolution at 2400 rpm (the sim's limit is 3000).
+DYNAMIC_OPTIONS = {"input_rpm": 2400, "run_in_s": 0.2, "output_revolutions": 1}
 
 
 class Daemon:
@@ -115,6 +118,8 @@ class RunPagesTest(unittest.TestCase):
             run_id, status = cls.daemon.run("static", STATIC_OPTIONS)
             cls.runs.append(run_id)
             assert status == "complete", f"static run {run_id} ended {status}"
+        cls.dynamic, status = cls.daemon.run("dynamic", DYNAMIC_OPTIONS)
+        assert status == "complete", f"dynamic run {cls.dynamic} ended {status}"
         cls.profile = tempfile.mkdtemp(prefix="wavebench-chromium-")
         cls.browser = chromium(cls.profile)
         os.makedirs(OUTPUT, exist_ok=True)
@@ -163,6 +168,26 @@ class RunPagesTest(unittest.TestCase):
         self.assertIn("forward", legend)
         self.assertIn("reverse", legend)
 
+    def test_dynamic_run_page_draws_spectrum_twin_and_zooms_to_every_sample(self):
+        self.open(f"/run?id={self.dynamic}")
+        self.assertEqual(len(self.canvases("spectrum-plot")), 1)
+        peaks = self.browser.find_elements(By.CSS_SELECTOR, "#peaks-table tbody tr")
+        self.assertGreater(len(peaks), 0)
+        self.assertIn("1/rev", self.browser.find_element(By.ID, "peaks-table").text)
+        self.assertEqual(len(self.canvases("twin-plot")), 1)
+        self.assertEqual(len(self.canvases("twin-residual-plot")), 1)
+        note = self.browser.find_element(By.ID, "trace-note")
+        WebDriverWait(self.browser, 20).until(lambda b: "min/max" in note.text)
+        self.shot("run-page-dynamic")
+        # Drag over a twentieth of the record: the page fetches that range again, now every
+        # sample of it.
+        over = self.browser.find_element(By.CSS_SELECTOR, "#trace-plot .u-over")
+        width = over.size["width"]
+        ActionChains(self.browser).move_to_element_with_offset(over, -width // 40, 0) \
+            .click_and_hold().move_by_offset(width // 20, 0).release().perform()
+        WebDriverWait(self.browser, 20).until(lambda b: note.text.startswith("every sample"))
+        self.shot("run-page-dynamic-zoomed")
+
     def test_run_page_prints_without_navigation(self):
         self.open(f"/run?id={self.runs[1]}")
         self.browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})
@@ -186,16 +211,18 @@ class RunPagesTest(unittest.TestCase):
 
         # A filter with no match empties the table; the page's URL keeps the filter.
         select = Select(self.browser.find_element(By.CSS_SELECTOR, "#filters select[name=procedure]"))
-        select.select_by_visible_text("dynamic")
+        select.select_by_visible_text("lost-motion")
         self.browser.find_element(By.CSS_SELECTOR, "#filters button[type=submit]").click()
         WebDriverWait(self.browser, 10).until(
             lambda b: "No runs match" in b.find_element(By.ID, "message").text)
         self.assertEqual(len(self.browser.find_elements(By.CSS_SELECTOR, "#runs tbody tr")), 0)
-        self.assertIn("procedure=dynamic", self.browser.current_url)
+        self.assertIn("procedure=lost-motion", self.browser.current_url)
         select.select_by_visible_text("static")
         self.browser.find_element(By.CSS_SELECTOR, "#filters button[type=submit]").click()
         WebDriverWait(self.browser, 10).until(
             lambda b: len(b.find_elements(By.CSS_SELECTOR, "#runs tbody tr")) >= 2)
+        shown = [r.get_attribute("data-id") for r in self.browser.find_elements(By.CSS_SELECTOR, "#runs tbody tr")]
+        self.assertNotIn(self.dynamic, shown)
 
         # A run's link opens its page.
         link = self.browser.find_element(By.CSS_SELECTOR, f"#runs tr[data-id='{self.runs[0]}'] a")

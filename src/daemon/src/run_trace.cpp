@@ -63,10 +63,10 @@ struct Range {
   double from_s = 0, to_s = 0;
 };
 
-Range range_params(const HttpTarget& target, double duration_s) {
+Range range_params(const HttpTarget& target, double end_s, double start_s = 0) {
   Range r;
-  r.from_s = seconds_param(target, "from_s").value_or(0.0);
-  r.to_s = seconds_param(target, "to_s").value_or(std::max(duration_s, r.from_s));
+  r.from_s = seconds_param(target, "from_s").value_or(start_s);
+  r.to_s = seconds_param(target, "to_s").value_or(std::max(end_s, r.from_s));
   if (r.to_s < r.from_s) {
     throw BadTraceParameter("to_s: got '" + target.query.at("to_s") +
                             "', expected at least from_s (" + std::to_string(r.from_s) + ")");
@@ -481,17 +481,24 @@ ApiResponse twin_trace(const storage::RunStore& store, const std::string& id,
   const auto dir = store.paths(id).dir;
   const auto before = dir / "twin.csv";
   const auto after = dir / "twin-calibrated.csv";
+  // The twin's times are the bench's (not from the start of the log): the whole range by
+  // default is from the first to the last line.
+  std::optional<double> start_s;
   double end_s = 0;
   for (const auto& file : {before, after}) {
     if (!std::filesystem::exists(file)) continue;
-    if (const auto span = twin_time_span(file)) end_s = std::max(end_s, span->second);
+    if (const auto span = twin_time_span(file)) {
+      start_s = std::min(start_s.value_or(span->first), span->first);
+      end_s = std::max(end_s, span->second);
+    }
   }
-  const auto range = range_params(target, end_s);
+  const auto range = range_params(target, end_s, start_s.value_or(0));
   nlohmann::json j = {{"run_id", id},
                       {"columns", columns},
                       {"from_s", range.from_s},
                       {"to_s", range.to_s},
-                      {"duration_s", end_s}};
+                      {"start_s", start_s.value_or(0)},
+                      {"end_s", end_s}};
   j["before"] = std::filesystem::exists(before) ? twin_file_trace(before, range, columns)
                                                 : nlohmann::json(nullptr);
   j["after"] = std::filesystem::exists(after) ? twin_file_trace(after, range, columns)

@@ -206,9 +206,21 @@ function dynamicSections(results) {
     ], [...peaks, ...aliased.map((a) => ({ name: `${a.name} (aliased from ${num(a.frequency_hz)} Hz)`, order_output: outputHz ? a.folded_hz / outputHz : null, folded_hz: a.folded_hz, amplitude_arcsec: a.amplitude_arcsec }))],
     { id: 'peaks-table' })));
   const amplitude = spec.amplitude_arcsec.map((a) => (a > 0 ? a : null));
+  // Where an aliased order with no amplitude of its own is marked: on the curve.
+  const spectrumAt = (order) => {
+    let best = null;
+    spec.order_output.forEach((o, i) => {
+      if (amplitude[i] != null && (best == null || Math.abs(o - order) < Math.abs(spec.order_output[best] - order))) best = i;
+    });
+    return best == null ? null : amplitude[best];
+  };
+  // Named peaks only ('unnamed' ones are in the table), largest first, a few: labels that
+  // overlap cannot be read.
+  const named = (p) => p.name && !p.name.startsWith('unnamed');
+  const shortName = (name) => name.replace(/\s*\(.*\)$/, '');
   const labels = [
-    ...peaks.map((p) => ({ x: p.order_output, y: p.amplitude_arcsec, text: p.name })),
-    ...(outputHz ? aliased.map((a) => ({ x: a.folded_hz / outputHz, y: a.amplitude_arcsec, text: `${a.name} (aliased)`, color: '#a0314f' })) : []),
+    ...peaks.filter(named).slice(0, 8).map((p) => ({ x: p.order_output, y: p.amplitude_arcsec, text: shortName(p.name) })),
+    ...(outputHz ? aliased.filter(named).map((a) => ({ x: a.folded_hz / outputHz, y: a.amplitude_arcsec > 0 ? a.amplitude_arcsec : spectrumAt(a.folded_hz / outputHz), text: `${shortName(a.name)} (aliased)`, color: '#a0314f' })) : []),
   ];
   out.draws = [() => makePlot(specBox.querySelector('.plot-area'), {
     xLabel: 'output order', yLabel: 'amplitude [arcsec]', logY: true,
@@ -339,8 +351,8 @@ function twinSections(run, results) {
       res.push([after.t_s, after.series.residual_arcsec]);
       resSeries.push({ label: 'residual, after calibration', color: palette[2] });
     }
-    makePlot(teBox.querySelector('.plot-area'), { xLabel: 't [s]', yLabel: 'TE [arcsec]', series: teSeries.map((x) => ({ ...x, spanGaps: te.length > 1 })), data: joinSeries(te) });
-    makePlot(resBox.querySelector('.plot-area'), { xLabel: 't [s]', yLabel: 'residual [arcsec]', series: resSeries.map((x) => ({ ...x, spanGaps: res.length > 1 })), data: joinSeries(res) });
+    makePlot(teBox.querySelector('.plot-area'), { xLabel: 'bench time [s]', yLabel: 'TE [arcsec]', series: teSeries.map((x) => ({ ...x, spanGaps: te.length > 1 })), data: joinSeries(te) });
+    makePlot(resBox.querySelector('.plot-area'), { xLabel: 'bench time [s]', yLabel: 'residual [arcsec]', series: resSeries.map((x) => ({ ...x, spanGaps: res.length > 1 })), data: joinSeries(res) });
   }];
   return [s];
 }
