@@ -329,28 +329,26 @@ function twinSections(run, results) {
       resBox.remove();
       return;
     }
+    // The measured TE goes last, drawn over the predictions (after calibration they overlap).
     const te = [];
     const teSeries = [];
     const res = [];
     const resSeries = [];
     if (before) {
-      te.push([before.t_s, before.series.measured_te_arcsec]);
-      teSeries.push({ label: 'measured', color: palette[0] });
       te.push([before.t_s, before.series.predicted_te_arcsec]);
       teSeries.push({ label: 'twin, before calibration', color: palette[1] });
       res.push([before.t_s, before.series.residual_arcsec]);
       resSeries.push({ label: 'residual, before calibration', color: palette[1] });
     }
     if (after) {
-      if (!before) {
-        te.push([after.t_s, after.series.measured_te_arcsec]);
-        teSeries.push({ label: 'measured', color: palette[0] });
-      }
       te.push([after.t_s, after.series.predicted_te_arcsec]);
       teSeries.push({ label: 'twin, after calibration', color: palette[2] });
       res.push([after.t_s, after.series.residual_arcsec]);
       resSeries.push({ label: 'residual, after calibration', color: palette[2] });
     }
+    const measured = before || after;
+    te.push([measured.t_s, measured.series.measured_te_arcsec]);
+    teSeries.push({ label: 'measured', color: '#222', width: 1 });
     makePlot(teBox.querySelector('.plot-area'), { xLabel: 'bench time [s]', yLabel: 'TE [arcsec]', series: teSeries.map((x) => ({ ...x, spanGaps: te.length > 1 })), data: joinSeries(te) });
     makePlot(resBox.querySelector('.plot-area'), { xLabel: 'bench time [s]', yLabel: 'residual [arcsec]', series: resSeries.map((x) => ({ ...x, spanGaps: res.length > 1 })), data: joinSeries(res) });
   }];
