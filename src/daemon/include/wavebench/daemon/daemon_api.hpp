@@ -63,13 +63,19 @@ struct ApiResponse {
 class LowPriorityReads;
 class ConsoleFiles;
 
+// What /api/status names as the software serving it.
+struct SoftwareIdentity {
+  std::string version = "unknown";
+  std::string commit = "unknown";
+};
+
 class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
 
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
             HostCheck host_check = HostCheck(),
-            std::shared_ptr<const ConsoleFiles> console = nullptr);
+            std::shared_ptr<const ConsoleFiles> console = nullptr, SoftwareIdentity software = {});
   // Thread-safe; may block while a run is being started. Never throws: every failure is an
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
@@ -95,6 +101,7 @@ class DaemonApi {
   HostCheck host_check_;
   std::shared_ptr<LowPriorityReads> reads_;
   std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
+  SoftwareIdentity software_;
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.
