@@ -12,6 +12,7 @@
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
 #include "wavebench/daemon/run_history_query.hpp"
+#include "wavebench/daemon/run_trace.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/product_spec.hpp"
@@ -211,6 +212,15 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     if (seg.size() == 3 && seg[1] == "runs") {
       if (!get) return method_not_allowed("GET");
       return costly([&] { return run_detail(seg[2]); });
+    }
+    if (seg.size() == 4 && seg[1] == "runs" && (seg[3] == "trace" || seg[3] == "twin")) {
+      if (!get) return method_not_allowed("GET");
+      if (!looks_like_run_id(seg[2]))
+        return api_error(404, "not found", "run '" + seg[2] + "' is not a run id");
+      return costly([&] {
+        return seg[3] == "trace" ? run_trace(store_, seg[2], target)
+                                 : run_twin_trace(store_, seg[2], target);
+      });
     }
     if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
       if (!get) return method_not_allowed("GET");

@@ -240,6 +240,8 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
               description.twin_gear, description.sense, samples, analyser,
               procedure_result.static_result ? &*procedure_result.static_result : nullptr);
           twin::write_calibrated_twin_config(paths.dir / "twin-calibrated.yaml", cal);
+          // The calibrated twin's replay, for the run page's before/after plot.
+          twin::write_twin_csv(paths.dir / "twin-calibrated.csv", cal.replay_after);
           twin_json["calibration"] = twin::to_json(cal);
           twin_json["calibration"]["config"] = "twin-calibrated.yaml";
         }

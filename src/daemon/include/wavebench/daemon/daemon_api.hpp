@@ -15,6 +15,8 @@
 //   GET  /api/runs/{id}                       record + results.json
 //   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
 //                                             page_gaps counts gaps within it)
+//   GET  /api/runs/{id}/trace?channels=&from_s=&to_s=&columns=   min/max per column (run_trace.hpp)
+//   GET  /api/runs/{id}/twin?from_s=&to_s=&columns=              the twin's curves (run_trace.hpp)
 //   GET  /api/live?since=&limit=              latest samples
 //   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
 //   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
