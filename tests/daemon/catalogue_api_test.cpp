@@ -45,6 +45,22 @@ TEST_F(CatalogueApiTest, SpecsListTheShippedLimitsWithUnits) {
   EXPECT_TRUE(reply.body["refused"].empty()) << reply.body.dump();
 }
 
+TEST_F(CatalogueApiTest, ABadUnitSerialOrOperatorIsRefusedNamingTheFieldAndNothingStarts) {
+  const std::vector<std::pair<nlohmann::json, std::string>> cases = {
+      {{{"procedure", "static"}, {"unit_serial", 42}}, "unit_serial: got 42, expected a string"},
+      {{{"procedure", "static"}, {"unit_serial", "SN 1"}}, "unit_serial: got 'SN 1', expected"},
+      {{{"procedure", "static"}, {"operator", "a\u0001b"}}, "operator: got 'a\\x01b', expected"},
+      {{{"procedure", "static"}, {"operator", std::string(65, 'o')}}, "operator: got '"},
+  };
+  for (const auto& [body, prefix] : cases) {
+    const auto reply = client().post("/api/runs", body);
+    EXPECT_EQ(reply.status, 400) << body.dump();
+    const auto detail = reply.body.value("detail", std::string());
+    EXPECT_EQ(detail.rfind(prefix, 0), 0u) << detail;
+  }
+  EXPECT_EQ(client().get("/api/runs").body["total"], 0);
+}
+
 TEST_F(CatalogueApiTest, AnUnknownSpecIsRefusedNamingItAndTheKnownOnesAndNothingStarts) {
   const auto reply = client().post("/api/runs", {{"procedure", "static"}, {"spec", "csf-99"}});
   EXPECT_EQ(reply.status, 400);

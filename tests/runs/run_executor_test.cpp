@@ -82,6 +82,21 @@ TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
   EXPECT_TRUE(*record->pass);
   EXPECT_EQ(record->procedure, "static");
   EXPECT_EQ(record->unit_serial, "PLANT-TEST");
+  EXPECT_TRUE(results["operator"].is_null());
+}
+
+TEST_F(RunExecutorTest, TheRequestsUnitSerialAndOperatorAreRecorded) {
+  testing::PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  auto request = small_static();
+  request.unit_serial = "CSF25-100/2026-0042";
+  request.operator_name = "Anna Müller";
+  const auto out = execute_run(bench, *store_, request);
+  EXPECT_EQ(out.results["unit_serial"], "CSF25-100/2026-0042");
+  EXPECT_EQ(out.results["operator"], "Anna Müller");
+  const auto record = store_->find_run(out.run_id);
+  ASSERT_TRUE(record);
+  EXPECT_EQ(record->unit_serial, "CSF25-100/2026-0042");
 }
 
 TEST_F(RunExecutorTest, ATightLimitFailsTheRun) {
@@ -167,6 +182,18 @@ TEST_F(RunExecutorTest, BadRequestsNameTheKeyAndCreateNothing) {
   r.procedure = "dynamic";
   r.options = {{"input_rpm", -5}};
   expect_refused(r, "dynamic.input_rpm");
+  r = small_static();
+  r.unit_serial = "SN 42";  // a space: not what a barcode holds
+  expect_refused(r, "unit_serial: got 'SN 42', expected 1 to 64 of");
+  r = small_static();
+  r.unit_serial = std::string(65, 'A');
+  expect_refused(r, "unit_serial");
+  r = small_static();
+  r.operator_name = "Eve<script>";
+  expect_refused(r, "operator: got 'Eve<script>'");
+  r = small_static();
+  r.operator_name = "tab\there";
+  expect_refused(r, "operator");
   EXPECT_TRUE(store_->list_runs().empty());
   std::size_t entries = 0;
   for (const auto& e : fs::directory_iterator(root_)) {

@@ -294,9 +294,11 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
   }
   for (const auto& [key, value] : body.items()) {
     if (key != "procedure" && key != "options" && key != "twin" && key != "report" &&
-        key != "spec") {
+        key != "spec" && key != "unit_serial" && key != "operator") {
       return api_error(400, "bad request",
-                       key + ": unknown key; expected procedure, options, spec, twin or report");
+                       key +
+                           ": unknown key; expected procedure, options, spec, unit_serial, "
+                           "operator, twin or report");
     }
   }
   runs::RunRequest run;
@@ -323,6 +325,21 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
       }
       (std::string(key) == "twin" ? run.twin : run.report) = flag->get<bool>();
     }
+  }
+  for (const auto* key : {"unit_serial", "operator"}) {
+    const auto value = body.find(key);
+    if (value == body.end() || value->is_null()) continue;
+    if (!value->is_string()) {
+      return api_error(400, "bad request",
+                       std::string(key) + ": got " + value->dump() + ", expected a string");
+    }
+    (std::string(key) == "operator" ? run.operator_name : run.unit_serial) =
+        value->get<std::string>();
+  }
+  try {
+    runs::check_run_identity(run);
+  } catch (const std::invalid_argument& e) {
+    return api_error(400, "bad request", e.what());
   }
   if (const auto spec = body.find("spec"); spec != body.end() && !spec->is_null()) {
     if (!spec->is_string()) {

@@ -118,7 +118,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
                                          run_budget(store.root()));
 
   RunOutcome outcome;
-  outcome.run_id = store.create_run(request.procedure, description.unit_serial, request.config_text,
+  const std::string unit_serial =
+      request.unit_serial.empty() ? description.unit_serial : request.unit_serial;
+  outcome.run_id = store.create_run(request.procedure, unit_serial, request.config_text,
                                     parsed.limits.dump(), request.spec ? request.spec->name : "");
   const auto paths = store.paths(outcome.run_id);
   outcome.dir = paths.dir;
@@ -135,7 +137,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"schema", kResultsSchema},
       {"run_id", outcome.run_id},
       {"procedure", request.procedure},
-      {"unit_serial", description.unit_serial},
+      {"unit_serial", unit_serial},
+      {"operator", request.operator_name.empty() ? nlohmann::json(nullptr)
+                                                 : nlohmann::json(request.operator_name)},
       {"bench", description.name},
       {"software_version", software_version()},
       {"software_commit", software_commit()},

@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "parsed_request.hpp"
+#include "quoted_value.hpp"
 #include "run_request_check_detail.hpp"
 
 namespace wavebench::runs {
@@ -95,9 +96,34 @@ RunBudget run_budget(const std::filesystem::path& runs_root) {
   return budget;
 }
 
+void check_run_identity(const RunRequest& request) {
+  const auto refuse = [](const char* key, const std::string& value, const char* expected) {
+    throw std::invalid_argument(std::string(key) + ": got '" + quoted_value(value) +
+                                "', expected " + expected);
+  };
+  if (!request.unit_serial.empty()) {
+    const bool ok = request.unit_serial.size() <= 64 &&
+                    request.unit_serial.find_first_not_of(
+                        "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789._/-") ==
+                        std::string::npos;
+    if (!ok) refuse("unit_serial", request.unit_serial, "1 to 64 of A-Z a-z 0-9 . _ / -");
+  }
+  if (!request.operator_name.empty()) {
+    bool ok = request.operator_name.size() <= 64;
+    for (const unsigned char c : request.operator_name) {
+      ok = ok && c >= 0x20 && c != 0x7f && c != '"' && c != '\\' && c != '<' && c != '>';
+    }
+    if (!ok) {
+      refuse("operator", request.operator_name,
+             "1 to 64 printable characters without quotes, backslashes or angle brackets");
+    }
+  }
+}
+
 ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescription& bench,
                               std::size_t extra_channels, const RunBudget& budget,
                               RunEstimate* estimate) {
+  check_run_identity(request);
   ParsedRequest parsed = parse_request(request);
   const RunPlan plan = plan_of(parsed.procedure, bench);
   check_at_most(plan.brake_torques_nm,

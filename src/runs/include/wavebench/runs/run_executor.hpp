@@ -34,7 +34,17 @@ struct RunRequest {
   // request's own "limits" on top, give the verdict; its lost_motion_at sets the lost-motion
   // procedure's lost_motion_fraction.
   std::optional<ProductSpec> spec;
+  // Who and what: the serial of the unit under test (a barcode scanner types it; empty: the
+  // bench config's unit_serial) and the operator (empty: not recorded). Checked by
+  // check_run_identity().
+  std::string unit_serial;
+  std::string operator_name;
 };
+
+// Throws std::invalid_argument naming `unit_serial` or `operator`, the value and what was
+// expected: a serial is 1..64 of [A-Za-z0-9._/-]; an operator 1..64 printable characters
+// without control characters or quotes.
+void check_run_identity(const RunRequest& request);
 
 struct RunProgress {
   std::string run_id;
