@@ -4,7 +4,7 @@
 set -euo pipefail
 
 packages=(
-  build-essential cmake ninja-build pkg-config git clang-format
+  build-essential cmake ninja-build pkg-config git clang-format curl
   libeigen3-dev libfftw3-dev libspdlog-dev libfmt-dev libboost-dev libboost-system-dev
   libmodbus-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev libssl-dev
   libgtest-dev libgmock-dev googletest libbenchmark-dev

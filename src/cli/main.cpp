@@ -3,10 +3,14 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "wavebench/runs/software_version.hpp"
 
 int main(int argc, char** argv) {
   CLI::App app{"wavebench - strain-wave gear test bench and digital twin"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", std::string("wavebench ") +
+                                        wavebench::runs::software_version() + " (commit " +
+                                        wavebench::runs::software_commit() + ")");
   wavebench::cli::ExitStatus status;
   wavebench::cli::register_sim_commands(app, status);
   wavebench::cli::register_can_commands(app, status);

@@ -294,7 +294,7 @@ TEST_F(RunReportTest, LostMotionRunHysteresisWithFittedStiffness) {
     }
   }
   const json results = {{"gear", {{"ratio", 100}, {"direction_sign", 1}}},
-                        {"lost_motion",
+                        {"lost_motion_fit",
                          {{"lost_motion_arcmin", 1.23},
                           {"lost_motion_torque_nm", 1.8},
                           {"backlash_arcmin", 1.0},
@@ -428,10 +428,11 @@ TEST_F(RunReportTest, AbortedRunShowsItsReasonInRed) {
 
 TEST_F(RunReportTest, SessionIndexLinksEachRunAndGathersTheTables) {
   const auto a = make_run(*store_, "static", "SN-5", static_results(), {});
-  const auto b = make_run(
-      *store_, "lost-motion", "SN-5",
-      {{"lost_motion", {{"lost_motion_arcmin", 0.77}, {"stiffness", {{"k1_nm_per_rad", 1.5e4}}}}}},
-      {}, storage::RunStatus::kAborted, "over-torque");
+  const auto b =
+      make_run(*store_, "lost-motion", "SN-5",
+               {{"lost_motion_fit",
+                 {{"lost_motion_arcmin", 0.77}, {"stiffness", {{"k1_nm_per_rad", 1.5e4}}}}}},
+               {}, storage::RunStatus::kAborted, "over-torque");
   write_run_report(a.dir);
   write_run_report(b.dir);
   const fs::path index = write_session_report(root_ / "runs", {a.dir, b.dir});

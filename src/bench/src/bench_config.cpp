@@ -7,15 +7,12 @@
 
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/config/config_text.hpp"
+#include "wavebench/config/shipped_configs.hpp"
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/config/units.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 #include "wavebench/strict_yaml/yaml_section.hpp"
-
-#ifndef WAVEBENCH_CONFIG_DIR
-#define WAVEBENCH_CONFIG_DIR "configs"
-#endif
 
 namespace wavebench::bench {
 namespace {
@@ -356,8 +353,7 @@ void read_true_gear(YamlSection& g, SimulatedSettings& s, const std::filesystem:
 // `simulated:`, or nothing for an in-process bench without one (all defaults).
 void read_simulated(YamlSection* n, BenchConfig& c, const std::filesystem::path& base) {
   SimulatedSettings s;
-  s.true_gear_case =
-      std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml";
+  s.true_gear_case = config::shipped_config_dir() / "twin" / "bench-unit-seed004.yaml";
   if (n) {
     if (auto g = n->optional_section("true_gear")) read_true_gear(*g, s, base);
     if (const auto v = n->optional_choice("brake_server", {"true", "false"})) {
@@ -395,7 +391,7 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
   c.description.sense = {100, 1};
   c.description.rated_torque_nm = 100;
   c.description.twin_case_path =
-      (std::filesystem::path(WAVEBENCH_CONFIG_DIR) / "twin" / "bench-unit-seed004.yaml").string();
+      (config::shipped_config_dir() / "twin" / "bench-unit-seed004.yaml").string();
   c.brake.link.endpoint.port = 1502;
   try {
     YamlSection root = strict_yaml::document_section(config::parse_config_yaml(yaml_text, source),
@@ -445,10 +441,7 @@ BenchConfig load_bench_config(const std::filesystem::path& path) {
 }
 
 BenchConfig default_simulated_bench_config() {
-  // An installed wavebench names its configs folder in the environment; a build tree knows it.
-  const char* dir = std::getenv("WAVEBENCH_CONFIG_DIR");
-  const std::filesystem::path configs = dir != nullptr && *dir != 0 ? dir : WAVEBENCH_CONFIG_DIR;
-  return load_bench_config(configs / "benches" / "sim.yaml");
+  return load_bench_config(config::shipped_config_dir() / "benches" / "sim.yaml");
 }
 
 BenchConfig bench_config_from_argument(const std::string& sim_or_path) {

@@ -26,7 +26,8 @@ Daemon::Daemon(DaemonSetup setup)
       live_(setup_.live_capacity),
       bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
       api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts),
-           std::make_shared<const ConsoleFiles>(setup_.console_root)) {
+           std::make_shared<const ConsoleFiles>(setup_.console_root),
+           SoftwareIdentity{setup_.software_version, setup_.software_commit}) {
   bench_thread_.set_check(setup_.bench_check);
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;

@@ -109,7 +109,7 @@ std::string response_text(const ApiResponse& response) {
 
 DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live,
                      std::string token, HostCheck host_check,
-                     std::shared_ptr<const ConsoleFiles> console)
+                     std::shared_ptr<const ConsoleFiles> console, SoftwareIdentity software)
     : bench_(bench),
       store_(store),
       live_(live),
@@ -117,6 +117,7 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       host_check_(std::move(host_check)),
       reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)),
       console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()),
+      software_(std::move(software)),
       sessions_(std::make_shared<SessionTable>()),
       live_clients_(std::make_shared<LiveStreamClients>(kMaxLiveStreams)) {}
 
@@ -329,6 +330,7 @@ nlohmann::json DaemonApi::status_json() const {
   const auto s = bench_.status();
   nlohmann::json j;
   j["state"] = daemon_state_name(s.state);
+  j["software"] = {{"version", software_.version}, {"commit", software_.commit}};
   j["lifecycle"] = bench::lifecycle_name(s.lifecycle);
   j["bench"] = s.description ? description_json(*s.description) : nlohmann::json(nullptr);
   j["devices"] = nlohmann::json::array();

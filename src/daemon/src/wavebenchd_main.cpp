@@ -21,6 +21,7 @@
 #include "wavebench/daemon/daemon_logging.hpp"
 #include "wavebench/daemon/daemon_options.hpp"
 #include "wavebench/daemon/last_resort_guard.hpp"
+#include "wavebench/runs/software_version.hpp"
 
 namespace {
 
@@ -63,9 +64,9 @@ int run(const daemon::DaemonOptions& options) {
         options.listen.host);
   }
   setup.allowed_hosts = options.allowed_hosts;
-  spdlog::info("wavebenchd {} starting: bench config {}, runs in {}, token in {}",
-               WAVEBENCH_SOFTWARE_VERSION, config.source, options.runs_dir.string(),
-               token_file.string());
+  spdlog::info("wavebenchd {} ({}) starting: bench config {}, runs in {}, token in {}",
+               runs::software_version(), runs::software_commit(), config.source,
+               options.runs_dir.string(), token_file.string());
   setup.bench_factory = [config] { return bench::make_bench(config); };
   setup.launcher = daemon::make_executor_run_launcher();
   setup.bench_check = daemon::make_commissioning_check();
@@ -73,6 +74,8 @@ int run(const daemon::DaemonOptions& options) {
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;
   setup.config_text = config.text;
+  setup.software_version = runs::software_version();
+  setup.software_commit = runs::software_commit();
   setup.console_root = options.web_root.empty() ? daemon::default_console_root() : options.web_root;
   if (setup.console_root.empty()) {
     spdlog::warn("no console files found (--web-root): the API is served, the console is not");
@@ -122,6 +125,8 @@ int run(const daemon::DaemonOptions& options) {
 
 int main(int argc, char** argv) {
   CLI::App app{"wavebenchd - the strain-wave gear test bench daemon"};
+  app.set_version_flag("--version", std::string("wavebenchd ") + runs::software_version() +
+                                        " (commit " + runs::software_commit() + ")");
   daemon::DaemonOptions options;
   std::string listen = "127.0.0.1:8470";
   std::string runs_dir = options.runs_dir.string();

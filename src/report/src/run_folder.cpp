@@ -89,30 +89,17 @@ std::optional<TwinTrace> read_twin_csv(const fs::path& path, std::vector<std::st
   return trace;
 }
 
-const json* find_by_shape(const json& results, const auto& matches) {
+// A section of results.json by its name in the schema (docs/formats/results.schema.json), of
+// the JSON type the schema gives it: the report never guesses a section from its shape.
+const json* section(const json& results, const std::string& key, json::value_t type) {
   if (!results.is_object()) return nullptr;
-  if (matches(results)) return &results;
-  for (const auto& [key, value] : results.items()) {
-    if (value.is_object() && matches(value)) return &value;
-  }
-  return nullptr;
-}
-
-// An array under `key` at the top level or inside a top-level object.
-const json* find_array(const json& results, const std::string& key) {
-  if (!results.is_object()) return nullptr;
-  if (auto it = results.find(key); it != results.end() && it->is_array()) return &*it;
-  for (const auto& [name, value] : results.items()) {
-    if (!value.is_object()) continue;
-    if (auto it = value.find(key); it != value.end() && it->is_array()) return &*it;
-  }
-  return nullptr;
+  const auto it = results.find(key);
+  return it != results.end() && it->type() == type ? &*it : nullptr;
 }
 
 std::optional<procedures::GearSense> sense_from_results(const json& results) {
-  const json* g = find_by_shape(
-      results, [](const json& j) { return j.contains("ratio") && j["ratio"].is_number(); });
-  if (!g) return std::nullopt;
+  const json* g = section(results, "gear", json::value_t::object);
+  if (!g || !number(*g, "ratio")) return std::nullopt;
   procedures::GearSense sense;
   sense.ratio = (*g)["ratio"].get<double>();
   if (auto s = number(*g, "direction_sign")) sense.direction_sign = *s < 0 ? -1 : 1;
@@ -206,32 +193,25 @@ RunFolder read_run_folder(const fs::path& dir, bool read_samples) {
 }
 
 const json* static_passes(const json& results) {
-  return find_array(results, "static");
+  return section(results, "static", json::value_t::array);
 }
 const json* lost_motion_profiles(const json& results) {
-  return find_array(results, "lost_motion");
+  return section(results, "lost_motion", json::value_t::array);
 }
 const json* load_shifts(const json& results) {
-  return find_array(results, "load_shift");
+  return section(results, "load_shift", json::value_t::array);
 }
 
 const json* dynamic_section(const json& results) {
-  return find_by_shape(results, [](const json& j) {
-    return j.contains("peaks") && j["peaks"].is_array() && j.contains("rms_arcsec");
-  });
+  return section(results, "dynamic", json::value_t::object);
 }
 
 const json* lost_motion_fit(const json& results) {
-  return find_by_shape(results, [](const json& j) {
-    const auto it = j.find("stiffness");
-    return it != j.end() && it->is_object() && it->contains("k1_nm_per_rad");
-  });
+  return section(results, "lost_motion_fit", json::value_t::object);
 }
 
 const json* twin_section(const json& results) {
-  if (!results.is_object()) return nullptr;
-  const auto it = results.find("twin");
-  return it != results.end() && it->is_object() ? &*it : nullptr;
+  return section(results, "twin", json::value_t::object);
 }
 
 std::optional<procedures::GearSense> estimate_gear_sense(

@@ -129,6 +129,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"unit_serial", description.unit_serial},
       {"bench", description.name},
       {"software_version", software_version()},
+      {"software_commit", software_commit()},
       {"gear",
        {{"ratio", description.sense.ratio}, {"direction_sign", description.sense.direction_sign}}},
       {"sync_period_s", description.sync_period_s},

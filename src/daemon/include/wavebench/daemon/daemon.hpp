@@ -31,6 +31,7 @@ struct DaemonSetup {
   std::string token;
   std::string config_text;  // the bench config, copied into every run
   std::string software_version = WAVEBENCH_SOFTWARE_VERSION;
+  std::string software_commit = "unknown";
   // A start request waits for its run id and DaemonApi::kMaxConcurrentReads costly reads may
   // run; the rest keep status, abort and stop answered.
   int api_threads = 6;

@@ -78,6 +78,12 @@ class ConsoleFiles;
 class SessionTable;
 class LiveStreamClients;
 
+// What /api/status names as the software serving it.
+struct SoftwareIdentity {
+  std::string version = "unknown";
+  std::string commit = "unknown";
+};
+
 class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
@@ -86,7 +92,7 @@ class DaemonApi {
 
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
             HostCheck host_check = HostCheck(),
-            std::shared_ptr<const ConsoleFiles> console = nullptr);
+            std::shared_ptr<const ConsoleFiles> console = nullptr, SoftwareIdentity software = {});
   // Thread-safe; may block while a run is being started. Never throws: every failure is an
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
@@ -118,6 +124,7 @@ class DaemonApi {
   HostCheck host_check_;
   std::shared_ptr<LowPriorityReads> reads_;
   std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
+  SoftwareIdentity software_;
   std::shared_ptr<SessionTable> sessions_;
   std::shared_ptr<LiveStreamClients> live_clients_;
 };
