@@ -85,6 +85,8 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"sync_lateness_max_s", a.sync_lateness_max_s},
           {"bench_time_s", a.bench_time_s},
           {"real_time_s", a.real_time_s},
+          {"drive_heartbeats", a.drive_heartbeats},
+          {"drive_heartbeat_gap_max_s", a.drive_heartbeat_gap_max_s},
           {"drive_statusword",
            a.drive_statusword ? nlohmann::json(*a.drive_statusword) : nlohmann::json(nullptr)},
           {"drive_state",
@@ -366,6 +368,23 @@ nlohmann::json DaemonApi::status_json() const {
   }
   j["acquisition"] = s.acquisition ? acquisition_json(*s.acquisition) : nlohmann::json(nullptr);
   j["live_samples"] = live_.total();
+  // The newest sample's values for the bench panel (null: not valid in that cycle).
+  j["latest"] = nullptr;
+  if (const auto total = live_.total(); total > 0) {
+    const auto newest = live_.since(total - 1, 1);
+    if (!newest.samples.empty()) {
+      const auto& x = newest.samples.back().sample;
+      const auto value = [&](storage::SampleFlag flag, double v) {
+        return x.valid(flag) ? nlohmann::json(v) : nlohmann::json(nullptr);
+      };
+      j["latest"] = {{"time_s", static_cast<double>(x.receive_time_ns) * 1e-9},
+                     {"input_speed_rad_s", value(storage::kInputSpeedValid, x.input_speed_rad_s)},
+                     {"theta_out_rad", value(storage::kThetaOutValid, x.theta_out_rad)},
+                     {"torque_nm", value(storage::kTorqueValid, x.torque_nm)},
+                     {"brake_current_a", value(storage::kBrakeCurrentValid, x.brake_current_a)},
+                     {"brake_torque_nm", value(storage::kBrakeTorqueValid, x.brake_torque_nm)}};
+    }
+  }
   return j;
 }
 

@@ -75,11 +75,19 @@ function showBench(s) {
     ['samples', fmt(a.samples)],
     ['bench time', a.bench_time_s === undefined ? '—' : `${a.bench_time_s.toFixed(1)} s`],
   ];
-  for (const [k, v] of Object.entries(a)) {
-    if (k.startsWith('device_') || k.startsWith('brake_') && !rows.some((r) => r[0] === k)) {
-      if (k !== 'brake_output_on') rows.push([k, fmt(v)]);
-    }
-  }
+  rows.push(['drive heartbeats (max gap)', a.drive_heartbeats === undefined ? '—'
+    : `${a.drive_heartbeats} (${fmt(a.drive_heartbeat_gap_max_s, 2)} s)`]);
+  const l = s.latest || {};
+  const rpm = l.input_speed_rad_s === null || l.input_speed_rad_s === undefined ? null
+    : l.input_speed_rad_s * 60 / (2 * Math.PI);
+  const deg = l.theta_out_rad === null || l.theta_out_rad === undefined ? null
+    : l.theta_out_rad * 180 / Math.PI;
+  rows.unshift(
+    ['input speed', rpm === null ? '—' : `${rpm.toFixed(1)} rpm`],
+    ['output angle', deg === null ? '—' : `${deg.toFixed(3)} °`],
+    ['torque', l.torque_nm === null || l.torque_nm === undefined ? '—' : `${l.torque_nm.toFixed(2)} N·m`],
+    ['brake current / torque', `${fmt(l.brake_current_a)} A / ${fmt(l.brake_torque_nm)} N·m`],
+  );
   table($('acquisition'), rows);
   table($('devices'), (s.devices || []).map((d) => {
     const state = [d.nmt_state, d.state, d.heartbeat_age_s !== undefined ? `heartbeat ${fmt(d.heartbeat_age_s, 2)} s` : null]
