@@ -137,6 +137,7 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void next_event() {
+    stream_.expires_never();
     timer_.expires_after(events_->period());
     timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
       if (ec) return;
@@ -144,6 +145,8 @@ class Session : public std::enable_shared_from_this<Session> {
       if (!event) return self->close();
       if (event->empty()) return self->next_event();
       self->event_ = std::move(*event);
+      // A client that stops reading loses its slot instead of holding it for ever.
+      self->stream_.expires_after(kIdleTimeout);
       net::async_write(self->stream_, net::buffer(self->event_),
                        [self](beast::error_code write_ec, std::size_t) {
                          if (write_ec) return self->close();
