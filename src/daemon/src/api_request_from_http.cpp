@@ -18,7 +18,8 @@ ApiRequest api_request_from_http(const http::request<http::string_body>& request
   // Two Origin headers are one too many: kept as an empty, foreign, origin.
   if (request.count(http::field::origin) == 1)
     api.origin = std::string(request[http::field::origin]);
-  api.console_request = std::string(request[kConsoleHeader]);
+  api.console_request =
+      std::string(request[boost::beast::string_view(kConsoleHeader.data(), kConsoleHeader.size())]);
   return api;
 }
 

@@ -37,6 +37,14 @@ double te_arcsec(double theta_in, double theta_out, double ratio, int sign) {
          model::kArcsecPerRad;
 }
 
+// NaN (no valid value in a column) as null: JSON has no NaN.
+nlohmann::json values_json(const std::vector<double>& values) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const double v : values)
+    out.push_back(std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr));
+  return out;
+}
+
 }  // namespace
 
 LiveStreamParams live_stream_params(const HttpTarget& target) {
@@ -59,7 +67,8 @@ std::shared_ptr<void> LiveStreamClients::admit() {
     count->fetch_sub(1);
     return nullptr;
   }
-  return std::shared_ptr<void>(nullptr, [count](void*) { count->fetch_sub(1); });
+  // Not null (a null shared_ptr tests false even with a deleter); the deleter only counts.
+  return std::shared_ptr<void>(count.get(), [count](void*) { count->fetch_sub(1); });
 }
 
 LiveStreamFrames::LiveStreamFrames(const LiveSampleBuffer& live,
@@ -119,10 +128,10 @@ nlohmann::json LiveStreamFrames::frame() {
           static_cast<double>(end_column) * width,
           static_cast<std::size_t>(end_column - first_column));
       j["rows"] = {{"t", rows.t},
-                   {"te_arcsec", rows.series[0]},
-                   {"input_speed_rad_s", rows.series[1]},
-                   {"torque_nm", rows.series[2]},
-                   {"brake_current_a", rows.series[3]}};
+                   {"te_arcsec", values_json(rows.series[0])},
+                   {"input_speed_rad_s", values_json(rows.series[1])},
+                   {"torque_nm", values_json(rows.series[2])},
+                   {"brake_current_a", values_json(rows.series[3])}};
       j["full_resolution"] = rows.full_resolution;
       t_.erase(t_.begin(), t_.begin() + static_cast<std::ptrdiff_t>(n));
       for (auto& v : series_) v.erase(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));
