@@ -81,7 +81,7 @@ function showBench(s) {
   const rpm = l.input_speed_rad_s === null || l.input_speed_rad_s === undefined ? null
     : l.input_speed_rad_s * 60 / (2 * Math.PI);
   const deg = l.theta_out_rad === null || l.theta_out_rad === undefined ? null
-    : l.theta_out_rad * 180 / Math.PI;
+    : (((l.theta_out_rad * 180) / Math.PI) % 360 + 360) % 360;  // the unwrapped angle, within a turn
   rows.unshift(
     ['input speed', rpm === null ? '—' : `${rpm.toFixed(1)} rpm`],
     ['output angle', deg === null ? '—' : `${deg.toFixed(3)} °`],
