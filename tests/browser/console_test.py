@@ -16,6 +16,7 @@ import tempfile
 import threading
 import time
 import unittest
+import urllib.error
 import urllib.request
 
 from selenium import webdriver
@@ -77,6 +78,16 @@ class ConsoleTest(unittest.TestCase):
         deadline = time.time() + WAIT_S
         while time.time() < deadline and self.status()['run'] is not None:
             time.sleep(0.1)
+
+    def needs_procedures_schema(self):
+        # The form is generated from GET /api/procedures (issue #10 item 3, built beside this
+        # suite); a daemon without it cannot show option fields.
+        try:
+            urllib.request.urlopen(self.daemon.url + '/api/procedures').read()
+        except urllib.error.HTTPError as e:
+            if e.code == 404:
+                self.skipTest('this wavebenchd serves no GET /api/procedures')
+            raise
 
     def open_console(self):
         self.driver.get(self.daemon.url + '/')
@@ -143,6 +154,7 @@ class ConsoleTest(unittest.TestCase):
         self.shot('2-logged-in')
 
     def test_3_an_invalid_option_shows_the_message_beside_its_field(self):
+        self.needs_procedures_schema()
         self.open_console()
         self.choose_procedure('static')
         self.set_option('positions', '1')
@@ -154,6 +166,7 @@ class ConsoleTest(unittest.TestCase):
         self.assertEqual(self.runs(), [])
 
     def test_4_a_static_run_from_the_form_with_a_spec(self):
+        self.needs_procedures_schema()
         self.open_console()
         self.choose_procedure('static')
         self.set_option('positions', '4')
@@ -202,6 +215,7 @@ class ConsoleTest(unittest.TestCase):
         self.assertGreater(te_points, 0)
 
     def test_5_the_stop_button_aborts_a_dynamic_run(self):
+        self.needs_procedures_schema()
         self.wait_idle()
         self.reset_if_faulted()
         self.open_console()
