@@ -61,6 +61,14 @@ export class LivePlots {
     const url = `/api/live/stream?window_s=${this.windowS}&columns=${this.columns()}`;
     this.source = new EventSource(url);
     this.source.onmessage = (event) => this.take(JSON.parse(event.data));
+    // The browser reconnects by itself after a dropped connection; a refusal (503: too many
+    // live views open) ends the stream, and the page says so.
+    this.source.onerror = () => {
+      const fps = document.getElementById('fps');
+      if (fps && this.source.readyState === EventSource.CLOSED) {
+        fps.textContent = 'live view refused (too many open?): reload to retry';
+      }
+    };
   }
 
   clear() {
