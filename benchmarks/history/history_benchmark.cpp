@@ -141,7 +141,10 @@ int main(int argc, char** argv) {
       Latencies l;
       std::size_t total = 0, page = 0;
       for (int i = 0; i < repeats; ++i) {
-        daemon::ApiRequest request{"GET", target, "127.0.0.1", "", ""};
+        daemon::ApiRequest request;
+        request.method = "GET";
+        request.target = target;
+        request.host = "127.0.0.1";
         const auto start = Clock::now();
         const auto reply = d.api().handle(request);
         l.ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());

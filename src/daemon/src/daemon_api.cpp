@@ -7,13 +7,16 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/api_token.hpp"
+#include "wavebench/daemon/browser_request.hpp"
 #include "wavebench/daemon/console_files.hpp"
+#include "wavebench/daemon/live_stream.hpp"
 #include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
 #include "wavebench/daemon/run_history_query.hpp"
 #include "wavebench/daemon/run_trace.hpp"
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/daemon/session_table.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/product_spec.hpp"
 #include "wavebench/storage/sample_log.hpp"
@@ -86,6 +89,8 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"sync_lateness_max_s", a.sync_lateness_max_s},
           {"bench_time_s", a.bench_time_s},
           {"real_time_s", a.real_time_s},
+          {"drive_heartbeats", a.drive_heartbeats},
+          {"drive_heartbeat_gap_max_s", a.drive_heartbeat_gap_max_s},
           {"drive_statusword",
            a.drive_statusword ? nlohmann::json(*a.drive_statusword) : nlohmann::json(nullptr)},
           {"drive_state",
@@ -119,7 +124,9 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       specs_dir_(specs_dir.empty() ? runs::default_specs_dir() : std::move(specs_dir)),
       reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)),
       console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()),
-      software_(std::move(software)) {}
+      software_(std::move(software)),
+      sessions_(std::make_shared<SessionTable>()),
+      live_clients_(std::make_shared<LiveStreamClients>(kMaxLiveStreams)) {}
 
 ApiResponse DaemonApi::costly(const std::function<ApiResponse()>& read) const {
   auto answer = reads_->run(read);
@@ -169,6 +176,12 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
   }
   const auto& seg = target.segments;
   const bool get = request.method == "GET";
+  if (request.method == "OPTIONS") {
+    // No CORS preflight is ever granted: a page of another origin cannot send the console's
+    // header, nor JSON, to this daemon.
+    return api_error(405, "method not allowed",
+                     "OPTIONS " + target.path + "; this daemon grants no cross-origin requests");
+  }
   if (seg.empty() || seg[0] != "api") {
     if (!get) {
       return api_error(405, "method not allowed",
@@ -181,18 +194,16 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     return api_error(405, "method not allowed",
                      request.method + " " + target.path + "; expected " + allowed);
   };
-  const auto authorized = [&] { return bearer_matches(request.authorization, token_); };
-  const auto unauthorized = [&] {
-    return api_error(401, "unauthorized",
-                     "this request moves hardware: send 'Authorization: Bearer <token>' with the "
-                     "daemon's token (see its --token-file)");
-  };
   try {
     if (seg.size() == 2 && seg[1] == "status") return get ? status() : method_not_allowed("GET");
     if (seg.size() == 2 && seg[1] == "live") return get ? live(target) : method_not_allowed("GET");
+    if (seg.size() == 3 && seg[1] == "live" && seg[2] == "stream") {
+      return get ? live_stream(target) : method_not_allowed("GET");
+    }
+    if (seg.size() == 2 && seg[1] == "session") return session(request);
     if (seg.size() == 2 && (seg[1] == "abort" || seg[1] == "stop" || seg[1] == "reset")) {
       if (!post) return method_not_allowed("POST");
-      if (!authorized()) return unauthorized();
+      if (auto refused = refuse_change(request)) return std::move(*refused);
       if (seg[1] == "abort") return abort_run();
       if (seg[1] == "stop") return stop();
       return reset();
@@ -206,7 +217,7 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     if (seg.size() == 2 && seg[1] == "runs") {
       if (get) return list_runs(target);
       if (!post) return method_not_allowed("GET or POST");
-      if (!authorized()) return unauthorized();
+      if (auto refused = refuse_change(request)) return std::move(*refused);
       return start_run(request);
     }
     if (seg.size() == 3 && seg[1] == "runs") {
@@ -240,7 +251,102 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
   return api_error(404, "not found", "no resource at " + target.path);
 }
 
+std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request) const {
+  if (request.has_origin && !same_origin(request.origin, request.host)) {
+    return api_error(403, "forbidden",
+                     "Origin: got '" + request.origin + "', expected http://" + request.host +
+                         " (a page of another site must not move the bench)");
+  }
+  if (bearer_matches(request.authorization, token_)) return std::nullopt;
+  const auto id = cookie_value(request.cookie, kSessionCookie);
+  if (id.empty() || !sessions_->use(id)) {
+    return api_error(401, "unauthorized",
+                     "this request moves hardware: send 'Authorization: Bearer <token>' with the "
+                     "daemon's token (see its --token-file), or log in at /login");
+  }
+  if (request.console_request.empty()) {
+    return api_error(403, "forbidden",
+                     std::string(kConsoleHeader) +
+                         ": missing; the console sends it with every change (a form of another "
+                         "site cannot)");
+  }
+  return std::nullopt;
+}
+
+ApiResponse DaemonApi::session(const ApiRequest& request) const {
+  const auto id = cookie_value(request.cookie, kSessionCookie);
+  if (request.method == "GET") {
+    const bool authenticated = !id.empty() && sessions_->use(id);
+    ApiResponse answer{200, {{"authenticated", authenticated}}};
+    // Renewed on every check: an open console keeps its session (and its stop button).
+    if (authenticated)
+      answer.headers.emplace_back("Set-Cookie", session_cookie(id, sessions_->lifetime().count()));
+    return answer;
+  }
+  if (request.method != "POST" && request.method != "DELETE") {
+    return api_error(405, "method not allowed",
+                     request.method + " /api/session; expected GET, POST or DELETE");
+  }
+  if (request.has_origin && !same_origin(request.origin, request.host)) {
+    return api_error(403, "forbidden",
+                     "Origin: got '" + request.origin + "', expected http://" + request.host);
+  }
+  if (request.console_request.empty()) {
+    return api_error(403, "forbidden",
+                     std::string(kConsoleHeader) + ": missing; log in from the console's page");
+  }
+  if (request.method == "DELETE") {
+    if (!id.empty()) sessions_->remove(id);
+    ApiResponse answer{200, {{"authenticated", false}}};
+    answer.headers.emplace_back("Set-Cookie", session_cookie("", 0));
+    return answer;
+  }
+  if (request.body.size() > kMaxLoginBody) {
+    return api_error(413, "payload too large",
+                     "body: " + std::to_string(request.body.size()) + " bytes, expected at most " +
+                         std::to_string(kMaxLoginBody));
+  }
+  const auto parsed = parse_request_json(request.body);
+  if (!parsed.error.empty()) return api_error(400, "bad request", parsed.error);
+  const auto token = parsed.value.is_object() ? parsed.value.find("token") : parsed.value.end();
+  if (!parsed.value.is_object() || token == parsed.value.end() || !token->is_string()) {
+    return api_error(400, "bad request",
+                     "token: missing; expected {\"token\": \"<the daemon's token>\"}");
+  }
+  if (!bearer_matches("Bearer " + token->get<std::string>(), token_)) {
+    return api_error(401, "unauthorized", "token: not the daemon's token (see its --token-file)");
+  }
+  ApiResponse answer{200, {{"authenticated", true}}};
+  answer.headers.emplace_back("Set-Cookie",
+                              session_cookie(sessions_->create(), sessions_->lifetime().count()));
+  return answer;
+}
+
+ApiResponse DaemonApi::live_stream(const HttpTarget& target) const {
+  LiveStreamParams params;
+  try {
+    params = live_stream_params(target);
+  } catch (const std::invalid_argument& e) {
+    return api_error(400, "bad request", e.what());
+  }
+  auto slot = live_clients_->admit();
+  if (!slot) {
+    return api_error(503, "busy",
+                     std::to_string(kMaxLiveStreams) +
+                         " live streams are open; close one (another console tab) and retry");
+  }
+  ApiResponse answer;
+  answer.content_type = "text/event-stream";
+  answer.stream = std::make_shared<LiveStreamFrames>(
+      live_, [this] { return status_json(); }, params, std::move(slot));
+  return answer;
+}
+
 ApiResponse DaemonApi::status() const {
+  return {200, status_json()};
+}
+
+nlohmann::json DaemonApi::status_json() const {
   const auto s = bench_.status();
   nlohmann::json j;
   j["state"] = daemon_state_name(s.state);
@@ -280,7 +386,24 @@ ApiResponse DaemonApi::status() const {
   }
   j["acquisition"] = s.acquisition ? acquisition_json(*s.acquisition) : nlohmann::json(nullptr);
   j["live_samples"] = live_.total();
-  return {200, j};
+  // The newest sample's values for the bench panel (null: not valid in that cycle).
+  j["latest"] = nullptr;
+  if (const auto total = live_.total(); total > 0) {
+    const auto newest = live_.since(total - 1, 1);
+    if (!newest.samples.empty()) {
+      const auto& x = newest.samples.back().sample;
+      const auto value = [&](storage::SampleFlag flag, double v) {
+        return x.valid(flag) ? nlohmann::json(v) : nlohmann::json(nullptr);
+      };
+      j["latest"] = {{"time_s", static_cast<double>(x.receive_time_ns) * 1e-9},
+                     {"input_speed_rad_s", value(storage::kInputSpeedValid, x.input_speed_rad_s)},
+                     {"theta_out_rad", value(storage::kThetaOutValid, x.theta_out_rad)},
+                     {"torque_nm", value(storage::kTorqueValid, x.torque_nm)},
+                     {"brake_current_a", value(storage::kBrakeCurrentValid, x.brake_current_a)},
+                     {"brake_torque_nm", value(storage::kBrakeTorqueValid, x.brake_torque_nm)}};
+    }
+  }
+  return j;
 }
 
 ApiResponse DaemonApi::start_run(const ApiRequest& request) const {

@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
@@ -88,6 +89,10 @@ class Session : public std::enable_shared_from_this<Session> {
   }
 
   void respond(ApiResponse response, bool keep_alive, unsigned version) {
+    if (response.stream) {
+      stream_events(std::move(response), version);
+      return;
+    }
     auto message = std::make_shared<http::response<http::string_body>>(
         static_cast<http::status>(response.status), version);
     message->set(http::field::server, "wavebenchd");
@@ -109,6 +114,47 @@ class Session : public std::enable_shared_from_this<Session> {
                       });
   }
 
+  // Server-sent events: the header without a length, then each event as the stream gives it,
+  // until a write fails (the client went away) or the stream ends; then the connection closes.
+  void stream_events(ApiResponse response, unsigned version) {
+    events_ = std::move(response.stream);
+    auto header = std::make_shared<http::response<http::empty_body>>(
+        static_cast<http::status>(response.status), version);
+    header->set(http::field::server, "wavebenchd");
+    header->set(http::field::content_type, response.content_type);
+    header->set(http::field::cache_control, "no-store");
+    header->set("X-Content-Type-Options", "nosniff");
+    for (const auto& [name, value] : response.headers) header->set(name, value);
+    header->keep_alive(false);
+    auto serializer = std::make_shared<http::response_serializer<http::empty_body>>(*header);
+    stream_.expires_never();
+    http::async_write_header(
+        stream_, *serializer,
+        [self = shared_from_this(), header, serializer](beast::error_code ec, std::size_t) {
+          if (ec) return self->close();
+          self->next_event();
+        });
+  }
+
+  void next_event() {
+    stream_.expires_never();
+    timer_.expires_after(events_->period());
+    timer_.async_wait([self = shared_from_this()](beast::error_code ec) {
+      if (ec) return;
+      auto event = self->events_->next();
+      if (!event) return self->close();
+      if (event->empty()) return self->next_event();
+      self->event_ = std::move(*event);
+      // A client that stops reading loses its slot instead of holding it for ever.
+      self->stream_.expires_after(kIdleTimeout);
+      net::async_write(self->stream_, net::buffer(self->event_),
+                       [self](beast::error_code write_ec, std::size_t) {
+                         if (write_ec) return self->close();
+                         self->next_event();
+                       });
+    });
+  }
+
   void close() {
     beast::error_code ignored;
     stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
@@ -118,6 +164,9 @@ class Session : public std::enable_shared_from_this<Session> {
   beast::flat_buffer buffer_;
   std::optional<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<const HttpServer::Handler> handler_;
+  std::shared_ptr<EventStream> events_;
+  net::steady_timer timer_{stream_.get_executor()};
+  std::string event_;
 };
 
 }  // namespace

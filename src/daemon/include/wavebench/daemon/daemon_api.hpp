@@ -3,10 +3,14 @@
 // transport (http_server.hpp carries it over Boost.Beast).
 //
 //   GET  /api/status                         state, bench, current run, fault, acquisition
-//   POST /api/runs      {procedure, options, spec}  start a run                 (token)
-//   POST /api/abort                           trip the bench: "operator abort" (token)
-//   POST /api/stop                            safe state: "operator stop"      (token)
-//   POST /api/reset                           clear a fault / reconnect        (token)
+//   POST /api/runs      {procedure, options, spec, unit_serial, operator}  start  (change)
+//   POST /api/abort                           trip the bench: "operator abort" (change)
+//   POST /api/stop                            safe state: "operator stop"      (change)
+//   POST /api/reset                           clear a fault / reconnect        (change)
+//   POST /api/session   {token}               log in: Set-Cookie wb_session (HttpOnly, Strict)
+//   GET  /api/session                         {"authenticated": bool}; renews the session
+//   DELETE /api/session                       log out
+//   GET  /api/live/stream?window_s=&columns=  server-sent events (live_stream.hpp)
 //   GET  /api/runs?unit=&procedure=&spec=&verdict=&status=&from=&to=&offset=&limit=
 //                                            a page of the history, newest first, and its total
 //                                            (run_history_query.hpp)
@@ -21,6 +25,9 @@
 //   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
 //   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
 //
+// A change needs `Authorization: Bearer <token>` (the CLI) or, from a browser, a live session
+// cookie together with the X-Wavebench-Request header (browser_request.hpp); an Origin, when
+// sent, must be this daemon's own. No CORS header is ever sent; OPTIONS is 405.
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
 // Reads that cost in proportion to the data (sample pages, run details) run on
@@ -37,6 +44,7 @@
 #include <vector>
 
 #include "wavebench/daemon/bench_thread.hpp"
+#include "wavebench/daemon/event_stream.hpp"
 #include "wavebench/daemon/host_check.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
@@ -50,6 +58,10 @@ struct ApiRequest {
   std::string host;    // the Host header; empty when absent
   std::string authorization;
   std::string body;
+  std::string cookie;           // the Cookie header (browser_request.hpp)
+  std::string origin;           // the Origin header; empty when absent
+  bool has_origin = false;      // an empty Origin is still one, and foreign
+  std::string console_request;  // the X-Wavebench-Request header
 };
 
 struct ApiResponse {
@@ -63,10 +75,15 @@ struct ApiResponse {
   std::optional<std::string> raw_body;
   std::string content_type = "application/json";
   std::vector<std::pair<std::string, std::string>> headers;  // extra header fields
+  // A server-sent event stream (event_stream.hpp): the header goes out with content_type, then
+  // the stream's events until the client closes.
+  std::shared_ptr<EventStream> stream;
 };
 
 class LowPriorityReads;
 class ConsoleFiles;
+class SessionTable;
+class LiveStreamClients;
 
 // What /api/status names as the software serving it.
 struct SoftwareIdentity {
@@ -77,6 +94,8 @@ struct SoftwareIdentity {
 class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
+  static constexpr std::size_t kMaxLiveStreams = 8;
+  static constexpr std::size_t kMaxLoginBody = 4096;
 
   // `specs_dir`: the product specs a run may name (empty: runs::default_specs_dir()).
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
@@ -85,6 +104,7 @@ class DaemonApi {
   // Thread-safe; may block while a run is being started. Never throws: every failure is an
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
+  SessionTable& sessions() const { return *sessions_; }
 
  private:
   ApiResponse route(const ApiRequest& request) const;
@@ -100,6 +120,11 @@ class DaemonApi {
   ApiResponse run_detail(const std::string& id) const;
   ApiResponse run_samples(const std::string& id, const HttpTarget& target) const;
   ApiResponse live(const HttpTarget& target) const;
+  ApiResponse live_stream(const HttpTarget& target) const;
+  ApiResponse session(const ApiRequest& request) const;
+  // Why a state-changing request is refused; nothing when it may go ahead.
+  std::optional<ApiResponse> refuse_change(const ApiRequest& request) const;
+  nlohmann::json status_json() const;
 
   BenchThread& bench_;
   storage::RunStore& store_;
@@ -110,6 +135,8 @@ class DaemonApi {
   std::shared_ptr<LowPriorityReads> reads_;
   std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
   SoftwareIdentity software_;
+  std::shared_ptr<SessionTable> sessions_;
+  std::shared_ptr<LiveStreamClients> live_clients_;
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.
