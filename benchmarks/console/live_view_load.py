@@ -31,11 +31,12 @@ source = os.path.abspath(os.path.join(here, '..', '..'))
 
 
 def real_clock_config(work):
-    text = open(os.path.join(source, 'configs/benches/sim.yaml')).read()
-    text = re.sub(r'^clock: simulated', 'clock: real', text, flags=re.M)
-    text = text.replace('../', os.path.join(source, 'configs') + '/')
-    path = os.path.join(work, 'sim-real-clock.yaml')
-    open(path, 'w').write(text)
+    # A copy of the shipped configs, so that the bench config's relative paths still resolve.
+    configs = os.path.join(work, 'configs')
+    shutil.copytree(os.path.join(source, 'configs'), configs)
+    path = os.path.join(configs, 'benches', 'sim-real-clock.yaml')
+    text = open(os.path.join(configs, 'benches', 'sim.yaml')).read()
+    open(path, 'w').write(re.sub(r'^clock: simulated', 'clock: real', text, flags=re.M))
     return path
 
 
@@ -99,15 +100,23 @@ def browser(url, profile):
     return driver
 
 
-def frame_rate(driver):
-    first = driver.execute_script('const s = window.wavebenchLive.stats(); '
-                                  'return [performance.now(), s.frames, s.draws];')
+def frame_rate(drivers, redraw_every_frame):
+    """Animation frames and plot redraws per second, counted in each page over 10 s; with
+    redraw_every_frame all four plots are redrawn at every animation frame (the worst case)."""
+    script = ('window.wavebenchLive.redrawEveryFrame = arguments[0]; '
+              'const s = window.wavebenchLive.stats(); '
+              'return [performance.now(), s.ticks, s.draws, s.points, s.seconds];')
+    first = [d.execute_script(script, redraw_every_frame) for d in drivers]
     time.sleep(10)
-    last = driver.execute_script('const s = window.wavebenchLive.stats(); '
-                                 'return [performance.now(), s.frames, s.draws, s.points];')
-    seconds = (last[0] - first[0]) / 1000
-    return {'frames_per_s': (last[1] - first[1]) / seconds,
-            'redraws_per_s': (last[2] - first[2]) / seconds, 'points': last[3]}
+    last = [d.execute_script(script, False) for d in drivers]
+    rates = []
+    for a, b in zip(first, last):
+        seconds = (b[0] - a[0]) / 1000
+        rates.append({'redraw_every_frame': redraw_every_frame,
+                      'frames_per_s': (b[1] - a[1]) / seconds,
+                      'redraws_per_s': (b[2] - a[2]) / seconds, 'points': b[3],
+                      'history_s': b[4]})
+    return rates
 
 
 def arm(build, config, duration, sessions):
@@ -121,7 +130,7 @@ def arm(build, config, duration, sessions):
         revolutions = max(1.0, duration / 60.0)  # 100 rpm input, ratio 100: 60 s per output turn
         status, answer = daemon.call('POST', '/api/runs', {
             'procedure': 'dynamic',
-            'options': {'input_rpm': 100, 'run_in_s': 0, 'output_revolutions': revolutions}})
+            'options': {'input_rpm': 100, 'output_revolutions': revolutions}})
         if status >= 300:
             raise RuntimeError(f'start refused: {status} {answer}')
         run_id = answer['run_id']
@@ -130,16 +139,17 @@ def arm(build, config, duration, sessions):
             _, s = daemon.call('GET', '/api/status')
             if s.get('run') is None:
                 break
-            if drivers and (s['run'].get('progress') or 0) > 0.9 and not rates:
-                rates = [frame_rate(d) for d in drivers]
+            if drivers and (s['run'].get('progress') or 0) > 0.93 and not rates:
+                rates = frame_rate(drivers, False) + frame_rate(drivers, True)
         if drivers and not rates:
-            rates = [frame_rate(d) for d in drivers]
+            rates = frame_rate(drivers, False) + frame_rate(drivers, True)
         _, s = daemon.call('GET', '/api/status')
         _, detail = daemon.call('GET', f'/api/runs/{run_id}')
         acquisition = (detail.get('results') or {}).get('acquisition') or {}
         a = s['acquisition']
         return {
             'status': detail['run']['status'],
+            'reason': detail['run'].get('reason'),
             'sync_lateness_p50_us': a['sync_lateness_p50_s'] * 1e6,
             'sync_lateness_p99_us': a['sync_lateness_p99_s'] * 1e6,
             'sync_lateness_max_us': a['sync_lateness_max_s'] * 1e6,
@@ -180,8 +190,10 @@ def main():
     for key in ['sync_skipped', 'samples_lost', 'incomplete_samples', 'samples_logged']:
         print(f'  {key}: {plain[key]} none, {loaded[key]} with {sessions} browsers')
     for i, r in enumerate(loaded['browsers']):
-        print(f'  browser {i + 1}: {r["frames_per_s"]:.1f} frames/s, {r["redraws_per_s"]:.1f} '
-              f'redraws/s, {r["points"]} points in view')
+        mode = 'every frame redrawn' if r['redraw_every_frame'] else 'redrawn on new data'
+        print(f'  browser {i % sessions + 1} ({mode}): {r["frames_per_s"]:.1f} frames/s, '
+              f'{r["redraws_per_s"]:.1f} redraws/s, {r["points"]} points per plot over '
+              f'{r["history_s"]:.0f} s of history')
     print(f'  p99 ratio {ratio("sync_lateness_p99_us"):.2f} (target <= 1.1); samples lost '
           f'{plain["samples_lost"]} -> {loaded["samples_lost"]}; min frame rate '
           f'{min((r["frames_per_s"] for r in loaded["browsers"]), default=0):.1f} (target >= 30)')

@@ -22,6 +22,7 @@ export class LivePlots {
     this.frames = 0;       // events received
     this.draws = 0;        // redraws done
     this.ticks = [];       // animation-frame times of the last second
+    this.tickCount = 0;    // animation frames since the page opened
     this.fps = 0;
     this.plots = SERIES.map((s) => this.makePlot(s));
     requestAnimationFrame((now) => this.tick(now));
@@ -102,6 +103,7 @@ export class LivePlots {
   }
 
   tick(now) {
+    this.tickCount += 1;
     this.ticks.push(now);
     while (this.ticks.length && this.ticks[0] < now - 1000) this.ticks.shift();
     this.fps = this.ticks.length;
@@ -120,7 +122,8 @@ export class LivePlots {
 
   // For the browser tests and the frame-rate benchmark.
   stats() {
-    return { frames: this.frames, draws: this.draws, fps: this.fps, points: this.t.length,
+    return { frames: this.frames, draws: this.draws, fps: this.fps, ticks: this.tickCount,
+      points: this.t.length,
       seconds: this.t.length ? this.t[this.t.length - 1] - this.t[0] : 0 };
   }
 }
