@@ -159,6 +159,18 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   const auto state = acquisition["drive_state"].get<std::string>();
   EXPECT_TRUE(state == "switch on disabled" || state == "ready to switch on") << state;
   EXPECT_EQ(acquisition["brake_output_on"], false) << status.dump();
+  // The bench panel's readbacks: the brake's coil temperature and status word, no alarm, and
+  // every CANopen node operational with a recent heartbeat.
+  EXPECT_TRUE(acquisition["brake_coil_temperature_c"].is_number()) << status.dump();
+  EXPECT_TRUE(acquisition["brake_status_word"].is_number()) << status.dump();
+  EXPECT_TRUE(acquisition["brake_alarm"].is_null()) << status.dump();
+  ASSERT_EQ(acquisition["nodes"].size(), 3U) << status.dump();
+  for (const auto& node : acquisition["nodes"]) {
+    EXPECT_EQ(node["nmt_state"], "operational") << node.dump();
+    ASSERT_TRUE(node["heartbeat_age_s"].is_number()) << node.dump();
+    EXPECT_LT(node["heartbeat_age_s"].get<double>(), 1.0) << node.dump();  // producer: 100 ms
+    EXPECT_GT(node["heartbeats"].get<int>(), 0) << node.dump();
+  }
   const auto enable =
       access->brake_server().with_controller([](simdevices::PowderBrakeController& c) {
         return c.holding()[simdevices::brake_registers::control] &

@@ -160,6 +160,29 @@ TEST(DynamicTeInput, KeepsValidSamplesOnTheirTimestampsAndCountsTheRest) {
   EXPECT_EQ(in.missed_cycles, 3u);
   EXPECT_DOUBLE_EQ(in.time_s[3], 0.008);
   EXPECT_DOUBLE_EQ(in.theta_in_rad[2], 3.0);
+  EXPECT_EQ(in.skipped_not_advancing, 0u);
+}
+
+// A repeated encoder value (a stale PDO on a loaded real-clock bench) or a step back is one
+// sample skipped and counted, in either direction of turning: never the end of the analysis.
+TEST(DynamicTeInput, OutputAnglesThatDoNotAdvanceAreSkippedAndCounted) {
+  for (const double direction : {1.0, -1.0}) {
+    std::vector<storage::SyncSample> samples(8);
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      samples[i].flags = storage::kAllChannelsValid;
+      samples[i].receive_time_ns = static_cast<std::int64_t>(i + 1) * 1'000'000;
+      samples[i].theta_in_rad = static_cast<double>(i);
+      samples[i].theta_out_rad = direction * static_cast<double>(i) / 80;
+    }
+    samples[3].theta_out_rad = samples[2].theta_out_rad;              // repeated
+    samples[6].theta_out_rad = samples[5].theta_out_rad - direction;  // a step back
+    const auto in = dynamic_te_input(samples);
+    EXPECT_EQ(in.skipped_not_advancing, 2u) << direction;
+    ASSERT_EQ(in.theta_out_rad.size(), 6u);
+    for (std::size_t i = 1; i < in.theta_out_rad.size(); ++i) {
+      EXPECT_GT((in.theta_out_rad[i] - in.theta_out_rad[i - 1]) * direction, 0) << i;
+    }
+  }
 }
 
 }  // namespace

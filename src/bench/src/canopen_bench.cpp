@@ -317,7 +317,7 @@ void CanopenBench::check_cycle(const CycleRecord& record) noexcept {
 void CanopenBench::on_heartbeat_frame(const can::Frame& frame) noexcept {
   const auto hb = canopen::decode_heartbeat(frame);
   if (!hb || !heartbeats_.watches(hb->node)) return;
-  heartbeats_.seen(hb->node, now(), Clock::now());
+  heartbeats_.seen(hb->node, now(), Clock::now(), hb->state);
   for (auto* d : canopen_devices()) {
     if (d->node() != hb->node) continue;
     if (hb->state == canopen::NmtState::boot_up)
@@ -725,7 +725,16 @@ AcquisitionStats CanopenBench::acquisition_stats() const {
     s.drive_statusword = drive.statusword;
     s.drive_state = canopen::to_string(canopen::decode_state(drive.statusword));
   }
-  if (const auto brake = brake_->fresh_readback()) s.brake_output_on = brake->status.output_on;
+  if (const auto brake = brake_->fresh_readback()) {
+    s.brake_output_on = brake->status.output_on;
+    s.brake_coil_temperature_c = brake->temperature_c;
+    s.brake_status_word = brake->status.raw;
+    s.brake_alarm = brake->status.alarm ? brake->alarm_text : std::string();
+  }
+  for (const auto& n : heartbeats_.nodes(now())) {
+    s.nodes.push_back({n.node, n.state ? std::string(canopen::to_string(*n.state)) : std::string(),
+                       n.count > 0 ? n.age_s : -1.0, n.count});
+  }
   s.drive_heartbeats = heartbeats_.count(drive_->node());
   s.drive_heartbeat_gap_max_s = heartbeats_.largest_gap(drive_->node());
   const auto& lateness = engine_->lateness();

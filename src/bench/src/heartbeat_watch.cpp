@@ -4,12 +4,13 @@
 
 namespace wavebench::bench {
 
-void HeartbeatWatch::seen(canopen::NodeId node, double now_s,
-                          Clock::time_point processed) noexcept {
+void HeartbeatWatch::seen(canopen::NodeId node, double now_s, Clock::time_point processed,
+                          std::optional<canopen::NmtState> state) noexcept {
   const auto it = last_.find(node);
   if (it == last_.end()) return;
   auto& n = it->second;
   n.last_s = now_s;
+  if (state) n.state = state;
   if (n.processed != Clock::time_point{})
     n.largest_gap_s =
         std::max(n.largest_gap_s, std::chrono::duration<double>(processed - n.processed).count());
@@ -37,6 +38,13 @@ std::uint64_t HeartbeatWatch::count(canopen::NodeId node) const noexcept {
 double HeartbeatWatch::largest_gap(canopen::NodeId node) const noexcept {
   const auto it = last_.find(node);
   return it == last_.end() ? 0 : it->second.largest_gap_s;
+}
+
+std::vector<HeartbeatWatch::NodeView> HeartbeatWatch::nodes(double now_s) const {
+  std::vector<NodeView> out;
+  out.reserve(last_.size());
+  for (const auto& [node, n] : last_) out.push_back({node, n.state, now_s - n.last_s, n.count});
+  return out;
 }
 
 }  // namespace wavebench::bench

@@ -75,6 +75,19 @@ nlohmann::json description_json(const bench::BenchDescription& d) {
           {"twin_case", d.twin_case_path}};
 }
 
+nlohmann::json nodes_json(const std::vector<bench::AcquisitionStats::NodeHeartbeat>& nodes) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& n : nodes) {
+    out.push_back(
+        {{"node", n.node},
+         {"nmt_state", n.nmt_state.empty() ? nlohmann::json(nullptr) : nlohmann::json(n.nmt_state)},
+         {"heartbeat_age_s",
+          n.heartbeat_age_s >= 0 ? nlohmann::json(n.heartbeat_age_s) : nlohmann::json(nullptr)},
+         {"heartbeats", n.heartbeats}});
+  }
+  return out;
+}
+
 nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
   return {{"syncs_sent", a.syncs_sent},
           {"samples", a.samples},
@@ -96,7 +109,15 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"drive_state",
            a.drive_state.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.drive_state)},
           {"brake_output_on",
-           a.brake_output_on ? nlohmann::json(*a.brake_output_on) : nlohmann::json(nullptr)}};
+           a.brake_output_on ? nlohmann::json(*a.brake_output_on) : nlohmann::json(nullptr)},
+          {"brake_coil_temperature_c", a.brake_coil_temperature_c
+                                           ? nlohmann::json(*a.brake_coil_temperature_c)
+                                           : nlohmann::json(nullptr)},
+          {"brake_status_word",
+           a.brake_status_word ? nlohmann::json(*a.brake_status_word) : nlohmann::json(nullptr)},
+          {"brake_alarm",
+           a.brake_alarm.empty() ? nlohmann::json(nullptr) : nlohmann::json(a.brake_alarm)},
+          {"nodes", nodes_json(a.nodes)}};
 }
 
 }  // namespace

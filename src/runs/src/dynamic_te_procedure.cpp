@@ -90,6 +90,7 @@ nlohmann::json DynamicTeOutcome::to_json() const {
   j["samples"] = samples;
   j["skipped_invalid"] = skipped_invalid;
   j["skipped_out_of_order"] = skipped_out_of_order;
+  j["skipped_not_advancing"] = skipped_not_advancing;
   j["missed_cycles"] = missed_cycles;
   j["teeth"] = {
       {"z_flex", teeth.z_flex}, {"z_circ", teeth.z_circ}, {"wave_number", teeth.wave_number}};
@@ -185,6 +186,7 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   out.samples = recorder.samples().size();
   out.skipped_invalid = input.skipped_invalid;
   out.skipped_out_of_order = input.skipped_out_of_order;
+  out.skipped_not_advancing = input.skipped_not_advancing;
   out.missed_cycles = input.missed_cycles;
   out.teeth = gear_teeth(d.twin_gear, d.sense.ratio);
   const auto predicted = predicted_components(d.twin_gear, out.teeth);

@@ -65,6 +65,10 @@ function showBench(s) {
     ['drive statusword', a.drive_statusword === null || a.drive_statusword === undefined ? '—'
       : `0x${a.drive_statusword.toString(16).padStart(4, '0')}`],
     ['brake output', fmt(a.brake_output_on)],
+    ['brake coil temperature', a.brake_coil_temperature_c === null || a.brake_coil_temperature_c === undefined
+      ? '—' : `${a.brake_coil_temperature_c.toFixed(1)} °C`],
+    ['brake status / alarm', `${a.brake_status_word === null || a.brake_status_word === undefined ? '—'
+      : `0x${a.brake_status_word.toString(16).padStart(4, '0')}`} / ${a.brake_alarm || 'no alarm'}`],
     ['SYNC rate', a.real_time_s > 0 ? `${fmt(a.syncs_sent / a.real_time_s, 4)} /s` : '—'],
     ['SYNC lateness p50 / p99 / max', [a.sync_lateness_p50_s, a.sync_lateness_p99_s, a.sync_lateness_max_s]
       .map((x) => (x === undefined || x === null ? '—' : `${(x * 1e6).toFixed(0)} µs`)).join(' / ')],
@@ -89,8 +93,15 @@ function showBench(s) {
     ['brake current / torque', `${fmt(l.brake_current_a)} A / ${fmt(l.brake_torque_nm)} N·m`],
   );
   table($('acquisition'), rows);
+  // NMT state and heartbeat age per node, from the bench's heartbeat watch.
+  const nodes = new Map((a.nodes || []).map((n) => [n.node, n]));
   table($('devices'), (s.devices || []).map((d) => {
-    const state = [d.nmt_state, d.state, d.heartbeat_age_s !== undefined ? `heartbeat ${fmt(d.heartbeat_age_s, 2)} s` : null]
+    const n = nodes.get(d.node) || {};
+    const drive = d.node !== null && d.node !== undefined && a.drive_state && (d.commands || []).length
+      ? a.drive_state : null;
+    const age = n.heartbeat_age_s === null || n.heartbeat_age_s === undefined ? null
+      : `heartbeat ${fmt(n.heartbeat_age_s, 2)} s ago`;
+    const state = [n.nmt_state, drive, age]
       .filter((x) => x).join(' · ');
     return [`${d.name}${d.node !== null && d.node !== undefined ? ` (node ${d.node})` : ''}`,
       state || (d.channels || []).map((c) => c.name).join(', ')];

@@ -79,6 +79,20 @@ struct AcquisitionStats {
   std::optional<std::uint16_t> drive_statusword;
   std::string drive_state;
   std::optional<bool> brake_output_on;
+  // The brake controller's readback beside it (bench panel): coil temperature, raw status
+  // word, and the decoded alarm (empty without one).
+  std::optional<double> brake_coil_temperature_c;
+  std::optional<std::uint16_t> brake_status_word;
+  std::string brake_alarm;
+  // Each CANopen node as its heartbeats show it: NMT state of the last one ("" before the
+  // first), bench time since it (-1 before the first) and how many arrived.
+  struct NodeHeartbeat {
+    std::uint8_t node = 0;
+    std::string nmt_state;
+    double heartbeat_age_s = -1;
+    std::uint64_t heartbeats = 0;
+  };
+  std::vector<NodeHeartbeat> nodes;
 };
 
 // A device of the bench as the API lists it: its name, its CANopen node (none for the Modbus

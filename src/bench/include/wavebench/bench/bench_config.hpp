@@ -13,8 +13,8 @@
 
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/bench/channel_device.hpp"
-#include "wavebench/canopen/eds.hpp"
 #include "wavebench/bench/drive_unit_choice.hpp"
+#include "wavebench/canopen/eds.hpp"
 #include "wavebench/canopen/torque_sensor.hpp"
 #include "wavebench/modbus/brake_config.hpp"
 

@@ -8,8 +8,10 @@
 #include <cstdint>
 #include <map>
 #include <optional>
+#include <vector>
 
 #include "wavebench/canopen/cob_id.hpp"
+#include "wavebench/canopen/nmt.hpp"
 
 namespace wavebench::bench {
 
@@ -21,13 +23,14 @@ class HeartbeatWatch {
   template <typename Nodes>
   void arm(const Nodes& nodes, double now_s, double timeout_s) {
     last_.clear();
-    for (const auto n : nodes) last_[n] = Node{now_s, {}, 0, 0};
+    for (const auto n : nodes) last_[n] = Node{now_s, {}, 0, 0, std::nullopt};
     timeout_s_ = timeout_s;
   }
   void disarm() noexcept { last_.clear(); }
   bool watches(canopen::NodeId node) const { return last_.contains(node); }
 
-  void seen(canopen::NodeId node, double now_s, Clock::time_point processed) noexcept;
+  void seen(canopen::NodeId node, double now_s, Clock::time_point processed,
+            std::optional<canopen::NmtState> state = std::nullopt) noexcept;
 
   struct Lost {
     canopen::NodeId node;
@@ -41,12 +44,23 @@ class HeartbeatWatch {
   std::uint64_t count(canopen::NodeId node) const noexcept;
   double largest_gap(canopen::NodeId node) const noexcept;
 
+  // What the bench panel shows of each watched node: the NMT state of its last heartbeat and
+  // the bench time since then.
+  struct NodeView {
+    canopen::NodeId node;
+    std::optional<canopen::NmtState> state;  // none before its first heartbeat
+    double age_s;
+    std::uint64_t count;
+  };
+  std::vector<NodeView> nodes(double now_s) const;
+
  private:
   struct Node {
     double last_s = 0;
     Clock::time_point processed{};
     std::uint64_t count = 0;
     double largest_gap_s = 0;
+    std::optional<canopen::NmtState> state;
   };
   std::map<canopen::NodeId, Node> last_;
   double timeout_s_ = 0;

@@ -17,6 +17,7 @@ struct DynamicTeInput {
   std::vector<double> theta_out_rad;
   std::size_t skipped_invalid = 0;       // an angle missing in the cycle
   std::size_t skipped_out_of_order = 0;  // timestamp not after the previous kept sample
+  std::size_t skipped_not_advancing = 0;  // output angle not past the previous kept one
   std::size_t missed_cycles = 0;         // sum of missed_before over the samples
 };
 

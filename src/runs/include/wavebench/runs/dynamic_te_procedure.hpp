@@ -37,6 +37,7 @@ struct DynamicTeOutcome {
   procedures::DynamicTeResult result;
   std::size_t samples = 0;  // recorded
   std::size_t skipped_invalid = 0, skipped_out_of_order = 0, missed_cycles = 0;
+  std::size_t skipped_not_advancing = 0;
   procedures::GearTeeth teeth;
   // results.json "dynamic": the analysis (peaks, aliased, mean/p2p/RMS) with the sample
   // counts, the order spectrum and a TE trace decimated for plotting.
