@@ -8,7 +8,9 @@ results.json), and in the browser arm each session's frame rate counted in the p
 last 10 s (with the run's whole history in the plots). Prints the figures and the ratios
 browsers/none; the issue's targets: ratios <= 1.1, >= 30 frames/s.
 
-Usage: benchmarks/console/live_view_load.py BUILD_DIR [DURATION_S=600] [SESSIONS=5]"""
+Usage: benchmarks/console/live_view_load.py BUILD_DIR [DURATION_S=600] [SESSIONS=5] [PAIRS=1]
+With PAIRS > 1 the arms alternate (none first, then browsers first, ...) and the totals over all
+pairs are compared, so that the machine's own noise averages out."""
 import http.client
 import json
 import os
@@ -173,13 +175,28 @@ def main():
     build = os.path.abspath(sys.argv[1] if len(sys.argv) > 1 else 'build')
     duration = float(sys.argv[2]) if len(sys.argv) > 2 else 600
     sessions = int(sys.argv[3]) if len(sys.argv) > 3 else 5
+    pairs = int(sys.argv[4]) if len(sys.argv) > 4 else 1
     work = tempfile.mkdtemp(prefix='wavebench-liveload-config-')
     config = real_clock_config(work)
-    plain = arm(build, config, duration, 0)
-    print('no browser:', json.dumps(plain), flush=True)
-    loaded = arm(build, config, duration, sessions)
-    print(f'{sessions} browsers:', json.dumps(loaded), flush=True)
+    plains, loadeds = [], []
+    for p in range(pairs):
+        order = [0, sessions] if p % 2 == 0 else [sessions, 0]
+        for n in order:
+            result = arm(build, config, duration, n)
+            print(f'pair {p + 1}, {n} browsers:', json.dumps(result), flush=True)
+            (loadeds if n else plains).append(result)
     shutil.rmtree(work, ignore_errors=True)
+
+    def pooled(results):
+        out = dict(results[0])
+        for key in ['sync_skipped', 'samples_lost', 'incomplete_samples', 'samples_logged']:
+            out[key] = sum(r[key] for r in results)
+        for key in ['sync_lateness_p50_us', 'sync_lateness_p99_us']:
+            out[key] = sorted(r[key] for r in results)[len(results) // 2]  # median over pairs
+        out['sync_lateness_max_us'] = max(r['sync_lateness_max_us'] for r in results)
+        out['browsers'] = [b for r in results for b in r['browsers']]
+        return out
+    plain, loaded = pooled(plains), pooled(loadeds)
 
     def ratio(key):
         return loaded[key] / plain[key] if plain[key] else float('inf') if loaded[key] else 1.0
