@@ -24,7 +24,9 @@ std::string trimmed(std::string text) {
   return text.substr(first, last - first + 1);
 }
 
-std::string new_token() {
+}  // namespace
+
+std::string random_hex_token() {
   std::random_device device;  // /dev/urandom on Linux
   static constexpr char kHex[] = "0123456789abcdef";
   std::string token;
@@ -35,6 +37,8 @@ std::string new_token() {
   }
   return token;
 }
+
+namespace {
 
 std::string errno_text() {
   return std::strerror(errno);
@@ -149,7 +153,7 @@ std::string load_or_create_token(const std::filesystem::path& path) {
     }
     return checked_daemon_token(path);
   }
-  const std::string token = new_token();
+  const std::string token = random_hex_token();
   const std::string line = token + "\n";
   const bool ok = ::write(fd, line.data(), line.size()) == static_cast<ssize_t>(line.size()) &&
                   ::fsync(fd) == 0;

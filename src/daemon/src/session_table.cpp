@@ -3,23 +3,9 @@
 #include <algorithm>
 #include <random>
 
+#include "wavebench/daemon/api_token.hpp"
+
 namespace wavebench::daemon {
-
-namespace {
-
-std::string random_id() {
-  std::random_device device;  // /dev/urandom on Linux
-  static constexpr char kHex[] = "0123456789abcdef";
-  std::string id;
-  for (int i = 0; i < 32; ++i) {
-    const auto byte = device() & 0xffu;
-    id += kHex[byte >> 4];
-    id += kHex[byte & 0xfu];
-  }
-  return id;
-}
-
-}  // namespace
 
 SessionTable::SessionTable(std::size_t capacity, std::chrono::seconds lifetime, Clock clock)
     : capacity_(std::max<std::size_t>(capacity, 1)),
@@ -40,7 +26,7 @@ std::string SessionTable::create() {
                          [](const auto& a, const auto& b) { return a.second < b.second; });
     last_use_.erase(oldest);
   }
-  auto id = random_id();
+  auto id = random_hex_token();
   last_use_[id] = now;
   return id;
 }

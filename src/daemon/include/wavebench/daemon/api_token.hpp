@@ -9,6 +9,9 @@
 
 namespace wavebench::daemon {
 
+// 256 random bits from /dev/urandom as 64 hex digits: the token and the console's session ids.
+std::string random_hex_token();
+
 // A token shorter than this is guessable; the daemon refuses to start with one.
 inline constexpr std::size_t kMinTokenLength = 16;
 inline constexpr std::size_t kMaxTokenFileBytes = 4096;
