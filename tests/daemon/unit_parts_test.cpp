@@ -1,5 +1,6 @@
 // The daemon's small parts: targets, the live ring buffer, the token, samples as JSON, options.
 #include <gtest/gtest.h>
+#include <sched.h>
 #include <sys/stat.h>
 
 #include <atomic>
@@ -18,6 +19,7 @@
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
 #include "wavebench/daemon/low_priority_reads.hpp"
+#include "wavebench/daemon/realtime_scheduling.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 
 namespace wavebench::daemon::testing {
@@ -243,6 +245,25 @@ TEST(LowPriorityReads, AnswersRefusesWhenAllAreBusyAndTurnsExceptionsInto500) {
   ASSERT_TRUE(both_running) << "a read was refused while a reader was free";
   EXPECT_TRUE(third_refused);
   EXPECT_TRUE(reads.run([] { return ApiResponse{204, nullptr}; }).has_value());
+}
+
+// The bench thread's helpers (twin, sample log writer, post-run analysis) must not inherit its
+// SCHED_FIFO: inherited, a post-run analysis held a core at real-time priority and the
+// simulated brake, starved, tripped its watchdog (CI, run 4 of 5 in a row).
+TEST(RealtimeScheduling, ThreadsStartedAfterwardsRunOnOrdinaryScheduling) {
+  RealtimeScheduling granted;
+  int bench_policy = -1;
+  int helper_policy = -1;
+  std::thread bench_like([&] {
+    granted = request_realtime_scheduling();
+    bench_policy = sched_getscheduler(0) & ~SCHED_RESET_ON_FORK;
+    std::thread helper([&] { helper_policy = sched_getscheduler(0); });
+    helper.join();
+  });
+  bench_like.join();
+  if (!granted.fifo) GTEST_SKIP() << "no real-time scheduling here: " << granted.message;
+  EXPECT_EQ(bench_policy, SCHED_FIFO);
+  EXPECT_EQ(helper_policy, SCHED_OTHER);
 }
 
 }  // namespace

@@ -13,7 +13,11 @@ RealtimeScheduling request_realtime_scheduling(int fifo_priority) {
   RealtimeScheduling r;
   sched_param param{};
   param.sched_priority = fifo_priority;
-  const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO, &param);
+  // SCHED_RESET_ON_FORK: the threads this one starts (the twin, the sample log's writer, the
+  // post-run analysis, the brake's heartbeat) run on ordinary scheduling, not at this priority.
+  // Inherited, their seconds of CPU starved the machine's other threads: a simulated brake
+  // waiting for the CPU missed its watchdog and tripped the bench after a run.
+  const int rc = pthread_setschedparam(pthread_self(), SCHED_FIFO | SCHED_RESET_ON_FORK, &param);
   if (rc == 0) {
     r.fifo = true;
     r.message = "SCHED_FIFO priority " + std::to_string(fifo_priority);

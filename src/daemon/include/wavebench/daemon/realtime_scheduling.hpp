@@ -15,7 +15,10 @@ struct RealtimeScheduling {
   std::string message;         // what was granted and what was refused, with the errno text
 };
 
-// Applies to the calling thread (scheduling) and the whole process (memory).
+// Applies to the calling thread (scheduling) and the whole process (memory). Threads the caller
+// starts afterwards run on ordinary scheduling (SCHED_RESET_ON_FORK); note that glibc's
+// pthread_getschedparam reports the parent's cached policy for them, sched_getscheduler(0)
+// reports what the kernel applies.
 RealtimeScheduling request_realtime_scheduling(int fifo_priority = 40);
 
 }  // namespace wavebench::daemon
