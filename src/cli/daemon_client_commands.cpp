@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "wavebench/daemon/client_commands.hpp"
+#include "wavebench/runs/procedure_catalogue.hpp"
 
 namespace wavebench::cli {
 namespace {
@@ -69,9 +70,11 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   };
   auto start_args = std::make_shared<StartArgs>();
   auto* start = daemon_subcommand(app, "start", "start a run on the daemon's bench", options);
-  start->add_option("procedure", start_args->procedure, "static, dynamic or lost-motion")
+  start
+      ->add_option("procedure", start_args->procedure,
+                   "a procedure of the registry (GET /api/procedures)")
       ->required()
-      ->check(CLI::IsMember({"static", "dynamic", "lost-motion"}));
+      ->check(CLI::IsMember(runs::procedure_names()));
   start->add_option("--option", start_args->options,
                     "procedure option KEY=VALUE (repeatable; VALUE as JSON where it parses, e.g. "
                     "positions=4 loads_nm=[0,60])");
@@ -97,6 +100,9 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   runs->add_option("--procedure", filter->procedure, "only this procedure");
   runs->add_option("--status", filter->status, "running, complete, aborted or incomplete");
   runs->add_option("--unit", filter->unit, "only this unit serial");
+  runs->add_option("--spec", filter->spec, "only runs accepted against this product spec");
+  runs->add_option("--verdict", filter->verdict,
+                   "only runs with this verdict (as the API's verdict filter: pass, fail, none)");
   runs->add_option("--limit", filter->limit, "newest N runs (1 to 1000; default 50)");
   runs->callback([options, filter, &status] {
     status.code = daemon::client_runs(options->context(), *filter);

@@ -18,6 +18,7 @@
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/report/run_report.hpp"
+#include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/procedure_options_file.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/runs/run_request_check.hpp"
@@ -221,10 +222,10 @@ int run_procedure(const RunArgs& a) {
 void register_run_commands(CLI::App& app, ExitStatus& status) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand(
-      "run", "Run one bench procedure without a daemon: static, dynamic or lost-motion");
-  cmd->add_option("procedure", args->procedure, "static | dynamic | lost-motion")
+      "run", "Run one bench procedure without a daemon (any procedure of the registry)");
+  cmd->add_option("procedure", args->procedure, "a procedure of the registry (GET /api/procedures)")
       ->required()
-      ->check(CLI::IsMember({"static", "dynamic", "lost-motion"}));
+      ->check(CLI::IsMember(runs::procedure_names()));
   cmd->add_option("--bench", args->bench,
                   "'sim' (the in-process simulated bench) or a bench config file")
       ->capture_default_str();

@@ -83,7 +83,9 @@ TEST_F(ClientCommandsTest, BadInputIsExit2AndStartsNothing) {
   EXPECT_NE(err_.str().find("--option"), std::string::npos);
   EXPECT_EQ(client_start(context(), "static", {"seconds=-1"}, false), 2);
   EXPECT_NE(err_.str().find("seconds"), std::string::npos) << err_.str();
-  EXPECT_EQ(client_runs(context(), RunsFilter{{}, std::string("finished"), {}, 0}), 2);
+  RunsFilter finished;
+  finished.status = "finished";
+  EXPECT_EQ(client_runs(context(), finished), 2);
   EXPECT_NE(err_.str().find("status"), std::string::npos);
   EXPECT_EQ(client_export(context(), "x", "", "xml"), 2);
   EXPECT_TRUE(client().get("/api/runs").body["runs"].empty());
@@ -115,9 +117,21 @@ TEST_F(ClientCommandsTest, RunsListsWithFilters) {
   ASSERT_EQ(client_runs(context(), {}), 0);
   EXPECT_NE(out_.str().find("lost-motion"), std::string::npos);
   EXPECT_NE(out_.str().find("static"), std::string::npos);
-  ASSERT_EQ(client_runs(context(), RunsFilter{std::string("static"), {}, {}, 0}), 0);
+  RunsFilter statics;
+  statics.procedure = "static";
+  ASSERT_EQ(client_runs(context(), statics), 0);
   EXPECT_EQ(out_.str().find("lost-motion"), std::string::npos) << out_.str();
   EXPECT_NE(out_.str().find("complete"), std::string::npos);
+  // The spec and verdict filters reach the API (no run here was accepted against a spec).
+  RunsFilter by_spec;
+  by_spec.spec = "no-such-spec";
+  out_.str("");
+  ASSERT_EQ(client_runs(context(), by_spec), 0);
+  EXPECT_EQ(out_.str().find("static"), std::string::npos) << out_.str();
+  RunsFilter by_verdict;
+  by_verdict.verdict = "maybe";
+  EXPECT_EQ(client_runs(context(), by_verdict), 2);
+  EXPECT_NE(err_.str().find("verdict"), std::string::npos) << err_.str();
 }
 
 TEST_F(ClientCommandsTest, ExportWritesTheSamplesAsTheStoreWouldAndTheResults) {

@@ -211,6 +211,8 @@ int client_runs(const ClientContext& ctx, const RunsFilter& filter) {
   if (filter.procedure) add("procedure", *filter.procedure);
   if (filter.status) add("status", *filter.status);
   if (filter.unit) add("unit", *filter.unit);
+  if (filter.spec) add("spec", *filter.spec);
+  if (filter.verdict) add("verdict", *filter.verdict);
   if (filter.limit > 0) add("limit", std::to_string(filter.limit));
   return with_client(ctx, false, [&](const DaemonClient& client) {
     const auto reply = client.get("/api/runs" + query);

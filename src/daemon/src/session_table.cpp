@@ -1,7 +1,6 @@
 #include "wavebench/daemon/session_table.hpp"
 
 #include <algorithm>
-#include <random>
 
 #include "wavebench/daemon/api_token.hpp"
 

@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "wavebench/modbus/brake_client.hpp"
+#include "wavebench/realtime/priority_inheriting_mutex.hpp"
 
 namespace wavebench::modbus {
 
@@ -71,7 +72,8 @@ class BrakeSupervisor {
   std::mutex mutex_;
   std::condition_variable wake_;
   bool stop_requested_ = false;
-  mutable std::mutex data_mutex_;
+  // Read by the acquisition thread every cycle: priority inheriting.
+  mutable realtime::PriorityInheritingMutex data_mutex_;
   std::optional<BrakeReadback> latest_;
   BrakeClient::Clock::time_point latest_time_{};
   std::string last_error_;

@@ -36,6 +36,7 @@ int client_reset(const ClientContext& ctx);
 struct RunsFilter {
   std::optional<std::string> procedure, status, unit;
   int limit = 0;  // 0: the API's default page (50)
+  std::optional<std::string> spec, verdict;
 };
 int client_runs(const ClientContext& ctx, const RunsFilter& filter);
 // Writes samples.csv (format "csv") or samples.json ("json"), results.json and run.json into

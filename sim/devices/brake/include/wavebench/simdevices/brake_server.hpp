@@ -18,6 +18,7 @@
 #include <thread>
 
 #include "wavebench/modbus/modbus_endpoint.hpp"
+#include "wavebench/realtime/priority_inheriting_mutex.hpp"
 #include "wavebench/simdevices/brake_fault.hpp"
 #include "wavebench/simdevices/powder_brake_controller.hpp"
 
@@ -91,7 +92,9 @@ class BrakeServer {
   int rtu_fd_ = -1;
   int port_ = 0;
 
-  mutable std::mutex controller_mutex_;
+  // Taken by the bench thread (shaft_torque, every millisecond of a real-clock simulated bench):
+  // priority inheriting.
+  mutable realtime::PriorityInheritingMutex controller_mutex_;
   PowderBrakeController controller_;
 
   std::mutex fault_mutex_;
