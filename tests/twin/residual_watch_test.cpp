@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <complex>
 #include <filesystem>
 #include <numbers>
 #include <random>
@@ -150,19 +151,32 @@ TEST(ResidualWatch, ADefectAppearingMidRunIsFlaggedWithinTwoRevolutionsOfItsOnse
   EXPECT_LE(f.first_t_s, (onset + 2) * run.seconds_per_revolution + 1e-6);
 }
 
-TEST(ResidualWatch, ARisingOncePerRevIsFlaggedAtOrderOneWithTheOutputOnceRevRankedFirst) {
+TEST(ResidualWatch, ARisingOncePerRevIsFlaggedWhenItLeavesItsBandWithTheOutputOnceRevFirst) {
+  // A wearing bearing grows slowly (here 0.04' a revolution: within one revolution its ramp
+  // spreads less than the sensor floor to the neighbouring orders). The residual's 1/rev is
+  // the twin's mismatch (2.7' at 4° against 2.5' at 0°) plus the growth; its band is 0.25 of
+  // the twin's own 2.5'. Closed form of the revolution where it leaves the band:
   SyntheticRun run;
-  // 0.25 of the twin's 2.5' 1/rev (37.5") is its band: 0.3' (18") more each revolution
-  // passes it by the third.
-  run.defects.rising_once_per_rev = {{0.3 * kArcmin, 1.0, 0}};
-  const auto r = watch(run, 4);
+  const double growth = 0.04 * kArcmin;
+  run.defects.rising_once_per_rev = {{growth, 0.0, 0}};
+  const std::complex<double> mismatch =
+      std::polar(2.7 * kArcmin, 4 * kPi / 180) - std::complex<double>(2.5 * kArcmin, 0);
+  int crossing = 0;
+  for (int r = 1; r <= 30 && crossing == 0; ++r) {
+    if (std::abs(mismatch + growth * (r - 0.5)) > 0.25 * 2.5 * kArcmin) crossing = r;
+  }
+  ASSERT_EQ(crossing, 11);
+  const auto r = watch(run, 14);
   ASSERT_FALSE(r.flags.empty());
   const auto& f = r.flags.front();
   std::printf("%s\n", describe(f).c_str());
+  EXPECT_EQ(r.flags.size(), 1u);
   EXPECT_EQ(f.order, 1);
-  EXPECT_LE(f.first_revolution, 3);
+  EXPECT_GE(f.first_revolution, crossing - 1);
+  EXPECT_LE(f.first_revolution, crossing + 1);
   ASSERT_FALSE(f.sources.empty());
   EXPECT_EQ(f.sources.front().family, "output_once_rev");
+  EXPECT_NE(f.suspect.find("bearing"), std::string::npos) << f.suspect;
 }
 
 TEST(ResidualWatch, AReversalStartsANewRevolutionAndStandstillAddsNothing) {
@@ -184,8 +198,33 @@ TEST(ResidualWatch, AReversalStartsANewRevolutionAndStandstillAddsNothing) {
   for (int k = 0; k <= 5000; ++k) feed(0.5 * rev * k / 5000);
   for (int k = 0; k <= 10000; ++k) feed(0.5 * rev - 0.99 * rev * k / 10000);
   EXPECT_TRUE(w.report().revolutions.empty());
+  EXPECT_EQ(w.report().unsteady_revolutions, 0);
   for (int k = 0; k <= 2000; ++k) feed(-0.49 * rev - 0.02 * rev * k / 2000);
-  EXPECT_EQ(w.report().revolutions.size(), 1u);  // 0.5 → −0.51 rev: one whole one back
+  // 0.5 → −0.51 rev: one whole one back.
+  EXPECT_EQ(
+      w.report().revolutions.size() + static_cast<std::size_t>(w.report().unsteady_revolutions),
+      1u);
+}
+
+TEST(ResidualWatch, ARevolutionWithStopsLikeAStaticRunsIsNotAnalysed) {
+  const auto twin = nominal();
+  ResidualWatch w(twin, 100);
+  // 24 moves per revolution, each followed by a dwell: one whole revolution forward.
+  const double rev = 2 * kPi * 100;
+  std::uint64_t i = 0;
+  for (int position = 0; position < 25; ++position) {
+    for (int k = 0; k < 400; ++k) {
+      TwinPoint p;
+      p.index = i;
+      p.t_s = 1e-3 * static_cast<double>(i++);
+      // 100 samples moving to the next position, 300 standing there.
+      p.theta1_rad = rev / 24 * (position + std::min(1.0, k / 100.0));
+      p.measured_te_rad = p.predicted_te_rad = 0;
+      w.feed(p);
+    }
+  }
+  EXPECT_TRUE(w.report().revolutions.empty());
+  EXPECT_EQ(w.report().unsteady_revolutions, 1);
 }
 
 TEST(ResidualWatchBand, IsTheLargestOfFloorMedianAndTheTwinsOwnLine) {

@@ -31,6 +31,28 @@ double arcsec(double rad) {
   return rad / kArcsec;
 }
 
+// Turned at a steady speed: of 32 equal parts of the revolution, at most two (a start's ramp)
+// took a time more than 25 % away from the median part's. A static or lost-motion run stops at
+// every position: its record's own pattern (the stops) would fill the order spectrum.
+bool steady(const std::vector<TwinPoint>& window, double start, double span) {
+  constexpr int kParts = 32;
+  std::vector<double> times;
+  double boundary = span / kParts;
+  double last_t = window.front().t_s;
+  for (const auto& p : window) {
+    if (std::abs(p.theta1_rad - start) >= boundary - 1e-12 * span) {
+      times.push_back(p.t_s - last_t);
+      last_t = p.t_s;
+      boundary += span / kParts;
+    }
+  }
+  if (times.size() < kParts / 2) return false;
+  const double typical = median(times);
+  int off = 0;
+  for (double t : times) off += std::abs(t - typical) > 0.25 * typical ? 1 : 0;
+  return off <= 2;
+}
+
 }  // namespace
 
 std::string te_family_name(model::TeFamily family) {
@@ -229,7 +251,11 @@ void ResidualWatch::feed(const TwinPoint& point) {
 
 void ResidualWatch::analyse_revolution() {
   ++revolution_;
-  if (window_.size() < std::max<std::size_t>(options_.min_samples_per_revolution, 4)) return;
+  if (window_.size() < std::max<std::size_t>(options_.min_samples_per_revolution, 4) ||
+      !steady(window_, start_theta_, kTwoPi * ratio_)) {
+    ++report_.unsteady_revolutions;
+    return;
+  }
   // Exactly one revolution: the last sample moved onto start ± 2πN by interpolation.
   const double end = start_theta_ + direction_ * kTwoPi * ratio_;
   std::vector<double> theta, residual, predicted;
@@ -375,6 +401,7 @@ nlohmann::json to_json(const DiagnosticReport& r) {
             {"sensor_noise_arcsec", arcsec(r.options.sensor_noise_rad)},
             {"max_harmonic", r.options.max_harmonic}}},
           {"revolutions", revolutions},
+          {"unsteady_revolutions", r.unsteady_revolutions},
           {"flags", flags}};
 }
 

@@ -28,6 +28,10 @@
 // at every multiple of its mesh order, the fundamental largest for a short pulse). One flag
 // per series for the run; later revolutions that show it again update it.
 //
+// Only revolutions turned at a steady speed are analysed (at most 1/16 of one off the median
+// pace: a start's ramp passes, a static run's stops at every position do not): the diagnosis
+// is the dynamic run's. Revolutions are numbered from the run's first motion either way.
+//
 // Single-threaded (the twin's thread feeds it); cheap: one FFT of one revolution per
 // revolution.
 
@@ -98,7 +102,10 @@ struct RevolutionSummary {
 
 struct DiagnosticReport {
   ResidualWatchOptions options;
-  std::vector<RevolutionSummary> revolutions;
+  std::vector<RevolutionSummary> revolutions;  // analysed
+  // Whole revolutions not analysed: not turned at a steady speed (a static run's stops) or
+  // with too few samples.
+  int unsteady_revolutions = 0;
   std::vector<DiagnosticFlag> flags;
 };
 
