@@ -103,7 +103,8 @@ TEST(DefectsSection, RefusesAZeroOrHugeAmplitudeAWidthOutsideZeroToOneAndANegati
 
 TEST(DefectsSection, AToothNeedsTheTeethOfItsPart) {
   std::string gear = kGear;
-  gear.replace(gear.find("  z_flex: 200\n  z_circ: 202\n"), 26, "  ratio: 100\n");
+  const std::string teeth = "  z_flex: 200\n  z_circ: 202\n";
+  gear.replace(gear.find(teeth), teeth.size(), "  ratio: 100\n");
   try {
     parse_twin_case(
         gear + "defects:\n  - {kind: tooth, part: flexspline, amplitude: \"1 arcsec\"}\n",

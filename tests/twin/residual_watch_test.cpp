@@ -143,6 +143,7 @@ TEST(ResidualWatch, ADefectAppearingMidRunIsFlaggedWithinTwoRevolutionsOfItsOnse
   const double onset = 4.5;
   run.defects.teeth = {tooth(model::DefectPart::kFlexspline, onset)};
   const auto r = watch(run, 8);
+  for (const auto& f : r.flags) std::printf("%s\n", describe(f).c_str());
   ASSERT_EQ(r.flags.size(), 1u);
   const auto& f = r.flags.front();
   EXPECT_EQ(f.order, 202);
@@ -253,6 +254,25 @@ TEST(ResidualWatchBand, LinesGroupIntoHarmonicSeriesUpToMaxHarmonic) {
   EXPECT_EQ(s[2].back().order, 400);
   EXPECT_EQ(s[3].front().order, 202);
   EXPECT_EQ(s[3].size(), 3u);  // 202, 404, 606
+}
+
+TEST(ResidualWatchBand, SeriesAtOrdersTheTwinDoesNotKnowBesideAStrongerLineAreItsSidebands) {
+  // The twin knows orders 202 and 200. A pulse train that appears mid-revolution: 202 strong
+  // and flagged, its sidebands 199, 203, 205 flagged too; a sideband of an unflagged line
+  // (230 beside 231) goes; 200, weaker than 202 but a known order, stays its own.
+  std::vector<double> residual(260, 0.01);
+  const std::vector<FlaggedLine> lines = {{202, 8, 1, 0},   {203, 2.5, 1, 0}, {199, 1, 1, 0},
+                                          {205, 0.9, 1, 0}, {200, 3, 1, 0},   {230, 0.6, 0.5, 0}};
+  for (const auto& l : lines) residual[static_cast<std::size_t>(l.order)] = l.amplitude_rad;
+  residual[231] = 0.55;  // below its band, not flagged
+  const auto s = attach_sidebands(harmonic_series(lines, 8), residual, {200, 202}, {});
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].front().order, 200);
+  EXPECT_EQ(s[0].size(), 1u);
+  EXPECT_EQ(s[1].front().order, 202);
+  ASSERT_EQ(s[1].size(), 4u);  // 202, then its sidebands by order
+  EXPECT_EQ(s[1][1].order, 199);
+  EXPECT_EQ(s[1][3].order, 205);
 }
 
 TEST(ResidualWatchRanking, AnOrderWithoutATermIsRankedByTheTermsItIsAHarmonicOf) {

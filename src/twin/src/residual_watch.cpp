@@ -195,12 +195,77 @@ std::vector<std::vector<FlaggedLine>> harmonic_series(std::vector<FlaggedLine> l
   return series;
 }
 
+std::vector<int> model_orders(const model::GearParams& twin, double ratio) {
+  std::vector<int> out;
+  for (const auto& t : twin.te_terms) {
+    const double o = output_order(t, ratio);
+    if (t.amplitude_rad != 0 && o >= 1 && std::abs(o - std::round(o)) < 1e-6) {
+      out.push_back(static_cast<int>(std::round(o)));
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::vector<FlaggedLine>> attach_sidebands(std::vector<std::vector<FlaggedLine>> series,
+                                                       const std::vector<double>& residual,
+                                                       const std::vector<int>& known_orders,
+                                                       const ResidualWatchOptions& options) {
+  // Exact orders only: the low harmonics of the 1/rev would cover every order below 9, where
+  // a defect's appearing mean (its pulse's average) spreads too.
+  const auto known = [&](int order) {
+    return std::binary_search(known_orders.begin(), known_orders.end(), order);
+  };
+  const auto series_of = [&](int order) {
+    return std::find_if(series.begin(), series.end(), [&](const auto& s) {
+      return std::any_of(s.begin(), s.end(),
+                         [&](const FlaggedLine& l) { return l.order == order; });
+    });
+  };
+  std::vector<bool> gone(series.size(), false);
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    const int f = series[i].front().order;
+    if (known(f)) continue;
+    double largest = 0;
+    for (const auto& l : series[i]) largest = std::max(largest, l.amplitude_rad);
+    // The strongest other line near it, flagged or not.
+    int host = 0;
+    double host_amplitude = 0;
+    const auto own = series.begin() + static_cast<std::ptrdiff_t>(i);
+    for (int k = std::max(1, f - options.max_sideband);
+         k <= f + options.max_sideband && k < static_cast<int>(residual.size()); ++k) {
+      if (series_of(k) == own) continue;
+      const double a = residual[static_cast<std::size_t>(k)];
+      if (a > host_amplitude) {
+        host_amplitude = a;
+        host = k;
+      }
+    }
+    if (host == 0 || host_amplitude < options.sideband_ratio * largest) continue;
+    gone[i] = true;
+    const auto into = series_of(host);
+    if (into != series.end() && !gone[static_cast<std::size_t>(into - series.begin())]) {
+      into->insert(into->end(), series[i].begin(), series[i].end());
+    }
+  }
+  std::vector<std::vector<FlaggedLine>> kept;
+  for (std::size_t i = 0; i < series.size(); ++i) {
+    if (gone[i]) continue;
+    std::sort(series[i].begin() + 1, series[i].end(),
+              [](const FlaggedLine& a, const FlaggedLine& b) { return a.order < b.order; });
+    kept.push_back(std::move(series[i]));
+  }
+  return kept;
+}
+
 ResidualWatch::ResidualWatch(const model::GearParams& twin, double ratio,
                              ResidualWatchOptions options)
     : twin_(twin),
       ratio_(ratio),
       options_(options),
-      analyser_(std::make_unique<analysis::SpectrumAnalyser>()) {
+      analyser_(std::make_unique<analysis::SpectrumAnalyser>()),
+      known_orders_(model_orders(twin, ratio)) {
   report_.options = options_;
 }
 
@@ -265,6 +330,12 @@ void ResidualWatch::analyse_revolution() {
     residual.push_back(p.measured_te_rad - p.predicted_te_rad);
     predicted.push_back(p.predicted_te_rad);
   }
+  // The sample before may already sit on the end (within a rounding of the test in feed()).
+  while (theta.size() > 2 && direction_ * (theta[theta.size() - 2] - end) >= 0) {
+    theta.pop_back();
+    residual.pop_back();
+    predicted.pop_back();
+  }
   const std::size_t n = theta.size();
   const double u = (end - theta[n - 2]) / (theta[n - 1] - theta[n - 2]);
   theta[n - 1] = end;
@@ -306,7 +377,8 @@ void ResidualWatch::analyse_revolution() {
                        &summary.largest_ratio, &summary.largest_ratio_order);
   report_.revolutions.push_back(summary);
 
-  for (auto& series : harmonic_series(lines, options_.max_harmonic)) {
+  for (auto& series : attach_sidebands(harmonic_series(lines, options_.max_harmonic), rs.amplitude,
+                                       known_orders_, options_)) {
     const FlaggedLine& fundamental = series.front();
     auto known =
         std::find_if(report_.flags.begin(), report_.flags.end(),

@@ -25,8 +25,12 @@
 // Lines above their band in one revolution are grouped by harmonic series: a line whose order
 // is a multiple (up to max_harmonic) of a lower flagged line's joins its series; the lowest
 // order of a series is the flag's order (a local tooth error is a pulse train: its lines sit
-// at every multiple of its mesh order, the fundamental largest for a short pulse). One flag
-// per series for the run; later revolutions that show it again update it.
+// at every multiple of its mesh order, the fundamental largest for a short pulse). A series
+// at an order where the twin has no term that is weaker than a
+// residual line within 8 orders is that line's sidebands, not a finding: a revolution in which
+// a defect appears holds its pulse train for part of the revolution only, and the lines
+// spread to their neighbours. One flag per series for the run; later revolutions that show it
+// again update it.
 //
 // Only revolutions turned at a steady speed are analysed (at most 1/16 of one off the median
 // pace: a start's ramp passes, a static run's stops at every position do not): the diagnosis
@@ -55,7 +59,14 @@ struct ResidualWatchOptions {
   double sensor_noise_rad =
       0;                 // the configured output encoder noise (BenchDescription); 0 = measure
   int max_harmonic = 8;  // a line joins a lower line's series up to this multiple
-  int max_order = 0;     // highest order watched; 0 = the revolution's angular Nyquist
+  // A series at an order where the twin has no term whose lines are
+  // weaker than 1/sideband_ratio × a residual line within max_sideband orders is that line's
+  // sidebands: a line whose amplitude changes within the revolution (a defect's onset) spreads
+  // to its neighbours (at ±k, c·|sin(πk·f)|/(πk) for a line present a fraction f of it: never
+  // more than the line itself).
+  int max_sideband = 8;
+  double sideband_ratio = 0.7;
+  int max_order = 0;  // highest order watched; 0 = the revolution's angular Nyquist
   std::size_t min_samples_per_revolution = 64;
   // Back-steps of θ1 smaller than this are jitter (skipped); larger ones start a new
   // revolution in the new direction [rad of the input].
@@ -134,6 +145,7 @@ class ResidualWatch {
   double ratio_;
   ResidualWatchOptions options_;
   std::unique_ptr<analysis::SpectrumAnalyser> analyser_;
+  std::vector<int> known_orders_;
   std::vector<TwinPoint> window_;
   double start_theta_ = 0;
   int direction_ = 0;  // +1 / -1 once θ1 has moved, 0 before
@@ -158,6 +170,15 @@ std::vector<FlaggedLine> lines_above_band(const std::vector<double>& residual,
 // Grouped by harmonic series (see above); each group sorted by order, its fundamental first.
 std::vector<std::vector<FlaggedLine>> harmonic_series(std::vector<FlaggedLine> lines,
                                                       int max_harmonic);
+// The twin's TE terms' orders of the output revolution (integer ones, ascending).
+std::vector<int> model_orders(const model::GearParams& twin, double ratio);
+// Drops the series that are sidebands of a residual line (see ResidualWatchOptions); a
+// sideband series of a flagged line joins its series. residual: the revolution's residual
+// spectrum (bin k = order k); known_orders: model_orders().
+std::vector<std::vector<FlaggedLine>> attach_sidebands(std::vector<std::vector<FlaggedLine>> series,
+                                                       const std::vector<double>& residual,
+                                                       const std::vector<int>& known_orders,
+                                                       const ResidualWatchOptions& options);
 
 nlohmann::json to_json(const DiagnosticFlag& flag);
 nlohmann::json to_json(const DiagnosticReport& report);
