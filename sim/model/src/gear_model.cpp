@@ -68,6 +68,12 @@ GearModel::GearModel(const GearParams& params, bool locate_events)
   if (!(j2_ > 0)) {
     throw std::invalid_argument("inertia_output = " + num(j2_) + " kg*m^2: expected > 0");
   }
+  if (!params.defects.empty()) {
+    // A twin that modelled the defect would predict it, and so never flag it.
+    throw std::invalid_argument(
+        "defects: only the simulated bench's unit takes them (expected a gear without a "
+        "defects section for the model and the twin)");
+  }
   if (!(j1_ > 0) && !(kinematic_ && j1_ == 0)) {
     throw std::invalid_argument("inertia_input = " + num(j1_) +
                                 " kg*m^2: expected > 0 (0 only with a kinematic input)");

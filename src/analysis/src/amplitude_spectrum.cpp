@@ -3,6 +3,7 @@
 #include <fftw3.h>
 
 #include <cmath>
+#include <mutex>
 #include <numeric>
 #include <stdexcept>
 #include <string>
@@ -10,19 +11,37 @@
 #include "wavebench/analysis/window.hpp"
 
 namespace wavebench::analysis {
+namespace {
+
+// FFTW's planner is not thread-safe (fftw_execute is): the twin's diagnosis plans on its own
+// thread while a procedure analyses on the bench's.
+std::mutex& planner_mutex() {
+  static std::mutex m;
+  return m;
+}
+
+fftw_plan plan_r2c(std::size_t n, double* in, fftw_complex* out) {
+  std::lock_guard lock(planner_mutex());
+  return fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE);
+}
+
+}  // namespace
 
 struct SpectrumAnalyser::Plan {
   explicit Plan(std::size_t n)
       : size(n),
         in(static_cast<double*>(fftw_malloc(sizeof(double) * n))),
         out(static_cast<fftw_complex*>(fftw_malloc(sizeof(fftw_complex) * (n / 2 + 1)))),
-        plan(fftw_plan_dft_r2c_1d(static_cast<int>(n), in, out, FFTW_ESTIMATE)) {
+        plan(plan_r2c(n, in, out)) {
     if (plan == nullptr)
       throw std::runtime_error("FFTW could not plan a transform of " + std::to_string(n) +
                                " points");
   }
   ~Plan() {
-    fftw_destroy_plan(plan);
+    {
+      std::lock_guard lock(planner_mutex());
+      fftw_destroy_plan(plan);
+    }
     fftw_free(in);
     fftw_free(out);
   }

@@ -26,6 +26,7 @@ TwinCase parse_document(const YAML::Node& root) {
   if (auto s = doc.optional_section("load")) parse_load_section(*s, twin.gear.load);
   if (auto s = doc.optional_section("solver")) parse_solver_section(*s, twin.solver);
   if (auto s = doc.optional_section("analysis")) parse_analysis_section(*s, twin.analysis);
+  parse_defects_section(doc.section_list("defects"), twin.gear);
   doc.finish();
   return twin;
 }

@@ -1,6 +1,8 @@
 #pragma once
 // The parsers of the sections of a twin case, one per file, each filling its part of TwinCase.
 
+#include <vector>
+
 #include "wavebench/config/twin_case.hpp"
 #include "yaml_section.hpp"
 
@@ -17,5 +19,7 @@ void parse_input_section(YamlSection& s, model::GearParams& gear);
 void parse_load_section(YamlSection& s, model::LoadParams& load);
 void parse_solver_section(YamlSection& s, model::SimulationOptions& solver);
 void parse_analysis_section(YamlSection& s, analysis::AnalysisOptions& analysis);
+// `defects:`, a list of {kind: tooth | rising_once_per_rev, ...}; needs the gear section read.
+void parse_defects_section(std::vector<YamlSection> items, model::GearParams& gear);
 
 }  // namespace wavebench::config

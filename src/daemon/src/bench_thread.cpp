@@ -181,7 +181,7 @@ void BenchThread::run_job(Job& job) {
   {
     std::lock_guard lock(mutex_);
     run_queued_ = false;
-    run_ = ActiveRun{"", procedure, "starting", 0};
+    run_ = ActiveRun{"", procedure, "starting", 0, nlohmann::json::array()};
   }
   auto progress = [this, &job](const runs::RunProgress& p) {
     {
@@ -196,6 +196,11 @@ void BenchThread::run_job(Job& job) {
       }
     }
     if (!p.run_id.empty()) job.settle({StartOutcome::Kind::kStarted, p.run_id, ""});
+  };
+  // On the twin's thread: the flag is logged there already; here it joins /api/status.
+  job.request.on_diagnosis = [this](const nlohmann::json& flag) {
+    std::lock_guard lock(mutex_);
+    if (run_) run_->diagnosis_flags.push_back(flag);
   };
   FinishedRun finished;
   try {

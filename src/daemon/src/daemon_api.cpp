@@ -395,7 +395,8 @@ nlohmann::json DaemonApi::status_json() const {
         {"id", s.run->run_id.empty() ? nlohmann::json(nullptr) : nlohmann::json(s.run->run_id)},
         {"procedure", s.run->procedure},
         {"phase", s.run->phase},
-        {"progress", s.run->fraction}};
+        {"progress", s.run->fraction},
+        {"diagnosis_flags", s.run->diagnosis_flags}};
   } else {
     j["run"] = nullptr;
   }

@@ -6,6 +6,7 @@
 #include "wavebench/analysis/amplitude_spectrum.hpp"
 #include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_tables.hpp"
+#include "wavebench/report/twin_diagnosis_section.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 
 namespace wavebench::report {
@@ -168,6 +169,7 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
       page.image("twin.png", "Twin against measured TE and the residual");
     }
   }
+  add_twin_diagnosis_section(page, run);
 
   HtmlTable acquisition = acquisition_table();
   add_acquisition_rows(acquisition, run);

@@ -175,8 +175,15 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
 #if WAVEBENCH_RUN_TWIN
     if (request.twin) {
       try {
-        twin_beside =
-            std::make_unique<twin::TwinBesideBench>(description.twin_gear, description.sense);
+        twin::TwinBesideBenchOptions twin_options;
+        twin_options.diagnosis.sensor_noise_rad = description.output_encoder_noise_rad;
+        if (request.on_diagnosis) {
+          twin_options.on_flag = [&request](const twin::DiagnosticFlag& flag) {
+            request.on_diagnosis(twin::to_json(flag));
+          };
+        }
+        twin_beside = std::make_unique<twin::TwinBesideBench>(description.twin_gear,
+                                                              description.sense, twin_options);
       } catch (const std::exception& e) {
         twin_json = {{"error", std::string("twin not started: ") + e.what()}};
       }

@@ -1,10 +1,12 @@
 #include "wavebench/twin/twin_beside_bench.hpp"
 
+#include <spdlog/spdlog.h>
 #include <time.h>
 
 #include <algorithm>
 #include <cmath>
 #include <exception>
+#include <limits>
 
 namespace wavebench::twin {
 namespace {
@@ -26,7 +28,20 @@ double percentile(std::vector<double> sorted, double q) {
 
 TwinBesideBench::TwinBesideBench(const model::GearParams& twin_gear,
                                  const procedures::GearSense& sense, TwinBesideBenchOptions options)
-    : twin_(twin_gear, sense, options.solver), ring_(options.queue_capacity) {
+    : twin_(twin_gear, sense, options.solver),
+      on_flag_(std::move(options.on_flag)),
+      ring_(options.queue_capacity) {
+  if (options.diagnose) {
+    watch_ = std::make_unique<ResidualWatch>(twin_gear, sense.ratio, options.diagnosis);
+    watch_->on_flag([this](const DiagnosticFlag& flag) {
+      spdlog::warn("twin diagnosis: {}", describe(flag));
+      {
+        std::lock_guard lock(flags_mutex_);
+        flags_.push_back(flag);
+      }
+      if (on_flag_) on_flag_(flag);
+    });
+  }
   thread_ = std::thread([this] { run(); });
 }
 
@@ -77,6 +92,7 @@ void TwinBesideBench::run() noexcept {
     try {
       for (std::size_t i = 0; i < n; ++i) twin_.push(batch[i]);
       const double reached = twin_.twin_time_s();
+      watch_residual(reached);
       if (std::isfinite(reached)) {
         const double newest =
             static_cast<double>(newest_time_ns_.load(std::memory_order_relaxed)) * 1e-9;
@@ -90,11 +106,32 @@ void TwinBesideBench::run() noexcept {
   if (!failed) {
     try {
       twin_.flush();
+      watch_residual(std::numeric_limits<double>::infinity());
     } catch (const std::exception& e) {
       report_.error = e.what();
     }
   }
   report_.thread_cpu_s = thread_cpu_seconds();
+}
+
+void TwinBesideBench::watch_residual(double reached_s) {
+  if (!watch_ || watch_failed_ || std::isnan(reached_s)) return;
+  const auto& points = twin_.points();
+  try {
+    while (watched_ < points.size() && points[watched_].t_s <= reached_s) {
+      watch_->feed(points[watched_]);
+      ++watched_;
+    }
+  } catch (const std::exception& e) {
+    // The diagnosis stops; the twin's prediction goes on.
+    watch_failed_ = true;
+    spdlog::warn("twin diagnosis stopped: {}", e.what());
+  }
+}
+
+std::vector<DiagnosticFlag> TwinBesideBench::diagnostic_flags() const {
+  std::lock_guard lock(flags_mutex_);
+  return flags_;
 }
 
 const TwinRunReport& TwinBesideBench::finish() {
@@ -112,6 +149,10 @@ const TwinRunReport& TwinBesideBench::finish() {
   report_.lag.p99_s = percentile(lags_s_, 0.99);
   report_.lag.max_s = lags_s_.empty() ? 0 : *std::max_element(lags_s_.begin(), lags_s_.end());
   report_.points = twin_.take_points();
+  if (watch_) {
+    report_.diagnosis = watch_->report();
+    report_.diagnosed = true;
+  }
   return report_;
 }
 
@@ -128,6 +169,7 @@ nlohmann::json to_json(const TwinRunReport& r) {
       {"samples_predicted", r.samples_predicted}, {"lag", to_json(r.lag)},
       {"solver_steps", r.solver_steps},           {"thread_cpu_s", r.thread_cpu_s}};
   if (!r.error.empty()) j["error"] = r.error;
+  if (r.diagnosed) j["diagnosis"] = to_json(r.diagnosis);
   return j;
 }
 

@@ -4,6 +4,7 @@
 import { api, get, post, ApiError } from './api.js';
 import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
+import { diagnosisFlagsTable } from './twin_diagnosis.js';
 
 const $ = (id) => document.getElementById(id);
 let loggedIn = false;
@@ -11,6 +12,7 @@ let lastStatus = null;
 let shownRun = null;
 let runStartedAt = null;
 let runId = null;
+let shownFlags = '';
 
 function message(text, error = false) {
   $('message').textContent = text;
@@ -123,12 +125,23 @@ function showRun(s) {
     $('run-bar').value = f;
     const elapsed = (Date.now() - runStartedAt) / 1000;
     $('run-left').textContent = f > 0.02 && f < 1 ? `${Math.round(elapsed * (1 - f) / f)} s left` : '';
+    showDiagnosis(run.diagnosis_flags || []);
   }
   const last = s.last_run;
   if (last && last.id && last.id !== shownRun) {
     shownRun = last.id;
     showLastRun(last);
   }
+}
+
+// The twin's flags while the run goes on (redrawn only when they change).
+function showDiagnosis(flags) {
+  const key = JSON.stringify(flags.map((f) => [f.order, f.revolutions]));
+  if (key === shownFlags) return;
+  shownFlags = key;
+  const box = $('run-diagnosis');
+  box.hidden = !flags.length;
+  box.replaceChildren(box.firstElementChild, ...(flags.length ? [diagnosisFlagsTable(flags, 'run-diagnosis-table')] : []));
 }
 
 async function showLastRun(last) {

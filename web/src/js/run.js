@@ -4,6 +4,7 @@
 import { get } from './api.js';
 import { el, num, table, section, verdictOf, specName } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
+import { twinDiagnosisSection } from './twin_diagnosis.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
 const main = document.getElementById('run');
@@ -401,6 +402,7 @@ async function main_() {
       : 'The record against time (zoom in for every sample)', 'te_arcsec'));
   }
   add(twinSections(run, results));
+  add(twinDiagnosisSection(results));
   add(exportsSection(run, detail));
   main.append(...sections);
   // Plots are drawn once their boxes are laid out (they take the box's width).

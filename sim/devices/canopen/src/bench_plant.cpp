@@ -7,6 +7,8 @@
 #include <string>
 #include <variant>
 
+#include "wavebench/model/gear_defects.hpp"
+
 namespace wavebench::simdevices {
 namespace {
 
@@ -197,10 +199,16 @@ void SimulatedBenchPlant::substep(double h) {
   const double j1 = params_.inertia_input;
   const double j2 = params_.inertia_output;
 
-  const double e = te_excitation(s.theta_in, s.theta_out);
+  const model::DefectExcitation defect =
+      params_.defects.empty()
+          ? model::DefectExcitation{}
+          : model::defect_excitation(params_.defects, params_.geometry, s.theta_in, s.theta_out,
+                                     s.omega_in, s.omega_out,
+                                     s.output_travel_rad / (2 * std::numbers::pi));
+  const double e = te_excitation(s.theta_in, s.theta_out) + defect.value;
   const double twist = s.theta_in / n - s.theta_out - e;
-  const double twist_rate =
-      s.omega_in / n - s.omega_out - te_rate(s.theta_in, s.theta_out, s.omega_in, s.omega_out);
+  const double twist_rate = s.omega_in / n - s.omega_out -
+                            te_rate(s.theta_in, s.theta_out, s.omega_in, s.omega_out) - defect.rate;
   const double x = backlash_filter(twist);
   double tg = 0;
   if (x != 0) {
@@ -240,6 +248,7 @@ void SimulatedBenchPlant::substep(double h) {
   s.omega_out = std::abs(omega_free) <= hold ? 0.0 : omega_free + h * brake / j2;
   s.theta_in += h * s.omega_in;
   s.theta_out += h * s.omega_out;
+  s.output_travel_rad += h * std::abs(s.omega_out);
   s.t += h;
   s.twist = twist;
   s.te = s.theta_out - s.theta_in / n;

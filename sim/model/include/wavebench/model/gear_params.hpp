@@ -165,6 +165,33 @@ struct LoadParams {
   double brake_current_a = 0;  // constant coil current of the brake
 };
 
+// --- Defects of a simulated unit (issue #11: proving the twin's diagnosis) ----------------
+// A local tooth error: a short pulse in e each time the damaged tooth meshes. A Flexspline
+// tooth turns with the output, so a lobe of the wave generator meets it each 2*pi/U of the
+// relative angle theta1 + theta2 (lines at (kU, kU): output orders k*U*(N + 1)); a Circular
+// Spline tooth is fixed, so a lobe meets it each 2*pi/U of theta1 (lines at (kU, 0): output
+// orders k*U*N). gear_defects.hpp evaluates both.
+enum class DefectPart { kFlexspline, kCircularSpline };
+struct ToothDefect {
+  DefectPart part = DefectPart::kFlexspline;
+  int tooth = 0;             // which tooth (0 .. z - 1 of its part): where the pulse sits
+  double amplitude_rad = 0;  // peak of the pulse in e (as a TE term: TE = -e for a rigid gear)
+  double width = 0.5;        // full width as a fraction of the interval between two meshes
+  double onset_rev = 0;      // output revolutions turned before the defect appears
+};
+// A once-per-output-revolution term whose amplitude grows with the output revolutions turned
+// after onset (wear of the output bearing follows the distance rolled, not the clock).
+struct RisingOnceRevDefect {
+  double growth_rad_per_rev = 0;
+  double phase_rad = 0;
+  double onset_rev = 0;
+};
+struct GearDefects {
+  std::vector<ToothDefect> teeth;
+  std::vector<RisingOnceRevDefect> rising_once_per_rev;
+  bool empty() const noexcept { return teeth.empty() && rising_once_per_rev.empty(); }
+};
+
 // --- The whole gear system ---------------------------------------------------------------
 struct GearParams {
   std::string name;
@@ -181,6 +208,8 @@ struct GearParams {
   InputDrive input = KinematicInput{};
   LoadParams load;
   double nominal_input_speed = 0;  // [rad/s] reference motion for deviation coordinates
+  // Only the simulated bench's plant takes defects; GearModel refuses a gear that has any.
+  GearDefects defects;
 };
 
 }  // namespace wavebench::model

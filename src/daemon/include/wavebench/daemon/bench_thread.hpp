@@ -46,6 +46,8 @@ struct ActiveRun {
   std::string procedure;
   std::string phase;
   double fraction = 0;
+  // The twin's diagnosis flags so far (results.json twin.diagnosis.flags[] entries).
+  nlohmann::json diagnosis_flags = nlohmann::json::array();
 };
 
 struct FinishedRun {

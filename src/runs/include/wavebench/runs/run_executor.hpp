@@ -39,6 +39,9 @@ struct RunRequest {
   // check_run_identity().
   std::string unit_serial;
   std::string operator_name;
+  // Called with each flag of the twin's diagnosis as results.json writes it (twin.diagnosis
+  // .flags[]), live, on the twin's thread: never on the bench's, so it may lock and log.
+  std::function<void(const nlohmann::json& flag)> on_diagnosis;
 };
 
 // Throws std::invalid_argument naming `unit_serial` or `operator`, the value and what was

@@ -28,7 +28,9 @@
 #include <atomic>
 #include <boost/lockfree/spsc_queue.hpp>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <thread>
@@ -36,6 +38,7 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/twin/measured_drive_twin.hpp"
+#include "wavebench/twin/residual_watch.hpp"
 
 namespace wavebench::twin {
 
@@ -43,6 +46,11 @@ struct TwinBesideBenchOptions {
   // Samples (262 s at 1 kHz, 12 MB): room for the simulated clock outrunning the twin.
   std::size_t queue_capacity = 1u << 18;
   TwinSolverOptions solver;
+  // The residual watched per output revolution (residual_watch.hpp), on the twin's thread.
+  bool diagnose = true;
+  ResidualWatchOptions diagnosis;
+  // Called on the twin's thread with each new flag (also logged there, never on the bench's).
+  std::function<void(const DiagnosticFlag&)> on_flag;
 };
 
 // Lag = bench time of the newest sample received − the bench time the twin has reached,
@@ -63,6 +71,8 @@ struct TwinRunReport {
   std::int64_t solver_steps = 0;
   double thread_cpu_s = 0;  // CPU time of the twin's thread
   std::string error;        // the model failed on the twin's thread (then it stops predicting)
+  DiagnosticReport diagnosis;  // empty when options.diagnose is off
+  bool diagnosed = false;
 };
 
 class TwinBesideBench final : public bench::SampleObserver {
@@ -84,12 +94,22 @@ class TwinBesideBench final : public bench::SampleObserver {
   std::uint64_t samples_received() const noexcept {
     return received_.load(std::memory_order_relaxed);
   }
+  // The flags raised so far (any thread; a lock shared with the twin's thread only).
+  std::vector<DiagnosticFlag> diagnostic_flags() const;
 
  private:
   void run() noexcept;
   void wake() noexcept;
 
+  void watch_residual(double reached_s);
+
   MeasuredDriveTwin twin_;
+  std::unique_ptr<ResidualWatch> watch_;
+  std::size_t watched_ = 0;  // points fed to watch_
+  bool watch_failed_ = false;
+  mutable std::mutex flags_mutex_;
+  std::vector<DiagnosticFlag> flags_;
+  std::function<void(const DiagnosticFlag&)> on_flag_;
   boost::lockfree::spsc_queue<TwinSampleInput> ring_;  // bench thread -> twin thread
   std::atomic<std::uint64_t> received_{0};
   std::atomic<std::uint64_t> dropped_{0};

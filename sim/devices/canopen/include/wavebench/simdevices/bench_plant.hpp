@@ -25,6 +25,7 @@ struct PlantState {
   double motor_torque = 0;  // T_m [N*m]
   double brake_torque = 0;  // torque the brake exerts on the output [N*m] (opposes motion)
   double shaft_torque = 0;  // torque through the sensor into brake and load [N*m]
+  double output_travel_rad = 0;  // output angle turned either way since start (defect onsets)
 };
 
 class SimulatedBenchPlant {
