@@ -58,6 +58,15 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
       {"unit serial", {run.field("unit_serial", "\u2013"), {}, false}},
       {"status", status_cell(run)},
   };
+  if (const auto v = run.results.find("verdict"); v != run.results.end() && v->is_string()) {
+    std::string shown = v->get<std::string>();
+    if (shown == "UNDECIDED") {
+      const std::string counts = run.results.value("undecided_counts_as", std::string("fail"));
+      shown += counts == "undecided" ? " (no acceptance decision)"
+                                     : " (counts as " + counts + " for acceptance)";
+    }
+    facts.push_back({"verdict", {shown, {}, v->get<std::string>() != "PASS"}});
+  }
   if (const std::string pass = run.field("pass"); !pass.empty() && pass != "null") {
     facts.push_back({"pass", {pass, {}, pass == "false"}});
   }
@@ -102,6 +111,27 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable shift = load_shift_table(false);
     add_load_shift_rows(shift, run, std::nullopt);
     add_table(page, shift);
+    HtmlTable budget = budget_table("static TE");
+    for (const auto& p : *passes) {
+      add_budget_rows(
+          budget, p,
+          p.value("direction", std::string()) + " " + general(p.value("load_nm", 0.0)) + " N*m");
+    }
+    add_table(page, budget);
+    HtmlTable lm_budget = budget_table("lost motion and load shift (static)");
+    if (const json* profiles = lost_motion_profiles(run.results)) {
+      for (const auto& p : *profiles) {
+        add_budget_rows(lm_budget, p, "lost motion " + general(p.value("load_nm", 0.0)) + " N*m");
+      }
+    }
+    if (const json* shifts = load_shifts(run.results)) {
+      for (const auto& p : *shifts) {
+        add_budget_rows(
+            lm_budget, p,
+            p.value("direction", std::string()) + " " + general(p.value("load_nm", 0.0)) + " N*m");
+      }
+    }
+    add_table(page, lm_budget);
   }
 
   // Dynamic TE.
@@ -132,6 +162,12 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable aliased = aliased_table();
     add_aliased_rows(aliased, run);
     add_table(page, aliased);
+    HtmlTable budget = budget_table("dynamic TE");
+    add_budget_rows(budget, *dyn, "");
+    if (const auto peaks = dyn->find("peaks"); peaks != dyn->end() && peaks->is_array()) {
+      for (const auto& p : *peaks) add_budget_rows(budget, p, p.value("name", std::string()));
+    }
+    add_table(page, budget);
   }
 
   // Lost motion, hysteresis, stiffness.
@@ -141,6 +177,10 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable t = stiffness_table(false);
     add_stiffness_rows(t, run, std::nullopt);
     add_table(page, t);
+    HtmlTable budget = budget_table("lost motion and stiffness");
+    add_budget_rows(budget, *fit, "");
+    if (const auto k = fit->find("stiffness"); k != fit->end()) add_budget_rows(budget, *k, "");
+    add_table(page, budget);
   }
   std::optional<TorqueTwistCurve> curve;
   if (fit) curve = torque_twist_from_results(*fit);
