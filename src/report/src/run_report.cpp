@@ -164,8 +164,8 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     add_table(page, aliased);
     HtmlTable budget = budget_table("dynamic TE");
     add_budget_rows(budget, *dyn, "");
-    if (const auto peaks = dyn->find("peaks"); peaks != dyn->end() && peaks->is_array()) {
-      for (const auto& p : *peaks) add_budget_rows(budget, p, p.value("name", std::string()));
+    if (const auto lines = dyn->find("peaks"); lines != dyn->end() && lines->is_array()) {
+      for (const auto& p : *lines) add_budget_rows(budget, p, p.value("name", std::string()));
     }
     add_table(page, budget);
   }
