@@ -42,6 +42,19 @@ std::string sample_facts(const RunFolder& run) {
          " cycles missed, " + std::to_string(incomplete) + " incomplete";
 }
 
+// "forward 60 N*m", "mesh": what an entry of a figure group is, from whichever of its
+// direction, name and load it has (malformed values are left out, not thrown over).
+std::string budget_label(const json& entry) {
+  std::string label;
+  for (const char* key : {"direction", "name"}) {
+    if (const auto it = entry.find(key); it != entry.end() && it->is_string()) {
+      label += (label.empty() ? "" : " ") + it->get<std::string>();
+    }
+  }
+  if (const auto load = number(entry, "load_nm")) label += " " + general(*load) + " N*m";
+  return label;
+}
+
 }  // namespace
 
 RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
@@ -61,7 +74,9 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
   if (const auto v = run.results.find("verdict"); v != run.results.end() && v->is_string()) {
     std::string shown = v->get<std::string>();
     if (shown == "UNDECIDED") {
-      const std::string counts = run.results.value("undecided_counts_as", std::string("fail"));
+      const auto it = run.results.find("undecided_counts_as");
+      const std::string counts =
+          it != run.results.end() && it->is_string() ? it->get<std::string>() : "fail";
       shown += counts == "undecided" ? " (no acceptance decision)"
                                      : " (counts as " + counts + " for acceptance)";
     }
@@ -113,22 +128,21 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     add_table(page, shift);
     HtmlTable budget = budget_table("static TE");
     for (const auto& p : *passes) {
-      add_budget_rows(
-          budget, p,
-          p.value("direction", std::string()) + " " + general(p.value("load_nm", 0.0)) + " N*m");
+      if (!p.is_object()) continue;
+      add_budget_rows(budget, p, budget_label(p));
     }
     add_table(page, budget);
     HtmlTable lm_budget = budget_table("lost motion and load shift (static)");
     if (const json* profiles = lost_motion_profiles(run.results)) {
       for (const auto& p : *profiles) {
-        add_budget_rows(lm_budget, p, "lost motion " + general(p.value("load_nm", 0.0)) + " N*m");
+        if (!p.is_object()) continue;
+        add_budget_rows(lm_budget, p, "lost motion" + budget_label(p));
       }
     }
     if (const json* shifts = load_shifts(run.results)) {
       for (const auto& p : *shifts) {
-        add_budget_rows(
-            lm_budget, p,
-            p.value("direction", std::string()) + " " + general(p.value("load_nm", 0.0)) + " N*m");
+        if (!p.is_object()) continue;
+        add_budget_rows(lm_budget, p, budget_label(p));
       }
     }
     add_table(page, lm_budget);
@@ -165,7 +179,9 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable budget = budget_table("dynamic TE");
     add_budget_rows(budget, *dyn, "");
     if (const auto lines = dyn->find("peaks"); lines != dyn->end() && lines->is_array()) {
-      for (const auto& p : *lines) add_budget_rows(budget, p, p.value("name", std::string()));
+      for (const auto& p : *lines) {
+        if (p.is_object()) add_budget_rows(budget, p, budget_label(p));
+      }
     }
     add_table(page, budget);
   }

@@ -262,10 +262,12 @@ void add_limit_rows(HtmlTable& table, const RunFolder& run) {
     const bool failed = pass != c.end() && pass->is_boolean() && !pass->get<bool>();
     const bool passed = pass != c.end() && pass->is_boolean() && pass->get<bool>();
     // The decision as ISO 14253-1 gives it; older runs have only `pass`.
-    std::string decision = c.value("decision", std::string());
+    const auto d = c.find("decision");
+    std::string decision = d != c.end() && d->is_string() ? d->get<std::string>() : "";
     if (decision.empty()) decision = failed ? "FAIL" : passed ? "PASS" : "\u2013";
     std::string measured = gnum(c, "measured");
-    if (const auto u = number(c, "expanded"); u && c.value("uncertainty_stated", true)) {
+    if (const auto u = number(c, "expanded");
+        u && !(c.contains("uncertainty_stated") && c["uncertainty_stated"] == false)) {
       measured += " \u00b1 " + general(*u, 2);
     }
     table.rows.push_back({{text(c, "limit"), {}, false},
