@@ -39,6 +39,7 @@ struct RunArgs {
   std::optional<double> revolutions;
   std::optional<double> load;
   std::vector<double> torques;
+  std::optional<int> repeats;  // any procedure
   std::string options_file;          // YAML procedure options (configs/procedures/*.yaml)
   std::vector<std::string> options;  // KEY=VALUE
   std::vector<std::string> limits;   // KEY=VALUE
@@ -97,6 +98,7 @@ runs::RunRequest build_request(const RunArgs& a) {
   if (a.revolutions) o["output_revolutions"] = *a.revolutions;
   if (a.load) o["load_nm"] = *a.load;
   if (!a.torques.empty()) o["torques_nm"] = a.torques;
+  if (a.repeats) o["repeats"] = *a.repeats;
   add_pairs(a.options, "--option", o);
   if (!a.limits.empty()) {
     nlohmann::json limits = nlohmann::json::object();
@@ -234,6 +236,9 @@ void register_run_commands(CLI::App& app, ExitStatus& status) {
   cmd->add_option("--positions", args->positions, "static: positions per output revolution");
   cmd->add_option("--loads", args->loads, "static: brake torques [N*m], e.g. 0,60")->delimiter(',');
   cmd->add_option("--window", args->window, "static: averaging window [s]");
+  cmd->add_option("--repeats", args->repeats,
+                  "any procedure: run it this many times; figures are the mean, the spread "
+                  "between repeats is in their uncertainty");
   cmd->add_option("--rpm", args->rpm, "dynamic: input speed [rpm]");
   cmd->add_option("--revolutions", args->revolutions, "dynamic: output revolutions recorded");
   cmd->add_option("--load", args->load, "dynamic: brake torque [N*m]");
@@ -246,7 +251,7 @@ void register_run_commands(CLI::App& app, ExitStatus& status) {
                   "pass/fail limit as KEY=VALUE, e.g. static_p2p_arcmin=6 (repeatable)");
   cmd->add_option("--spec", args->spec,
                   "product spec the run is accepted against (configs/specs/NAME.yaml): its "
-                  "limits give the verdict, PASS or FAIL");
+                  "limits give the verdict, PASS, FAIL or UNDECIDED");
   cmd->add_option("--specs-dir", args->specs_dir,
                   "folder of product specs (default the shipped configs/specs)");
   cmd->add_flag("--no-twin", args->no_twin, "do not run the twin beside the bench");

@@ -113,7 +113,7 @@ TEST_F(CatalogueApiTest, BadHistoryParametersAreRefusedNamingKeyValueAndExpectat
       {"limit=0", "limit: got '0', expected an integer from 1 to 1000"},
       {"limit=1001", "limit: got '1001', expected an integer from 1 to 1000"},
       {"offset=-1", "offset: got '-1', expected an integer from 0"},
-      {"verdict=maybe", "verdict: got 'maybe', expected pass, fail or none"},
+      {"verdict=maybe", "verdict: got 'maybe', expected pass, fail, undecided or none"},
       {"procedure=statik", "procedure: got 'statik', expected one of static, dynamic, lost-motion"},
       {"from=2026-13-01", "from: got '2026-13-01', expected an ISO date"},
       {"to=yesterday", "to: got 'yesterday', expected an ISO date"},

@@ -183,7 +183,7 @@ TEST_F(RunReportTest, StaticRunTablesPlotsAndTwin) {
     EXPECT_NE(html.find(v), std::string::npos) << v;
   }
   EXPECT_NE(html.find(">0.31<"), std::string::npos);  // lost motion at 0 N*m
-  EXPECT_NE(html.find("<span class=\"alert\">fail</span>"), std::string::npos);
+  EXPECT_NE(html.find("<span class=\"alert\">FAIL</span>"), std::string::npos);
   EXPECT_NE(html.find(">4.90<"), std::string::npos);  // load shift
   EXPECT_NE(html.find("4.209e+04"), std::string::npos);
   EXPECT_NE(html.find("residual_after.rms_arcsec"), std::string::npos);

@@ -8,6 +8,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "procedure_registry.hpp"
 #include "wavebench/runs/dynamic_te_procedure.hpp"
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
@@ -32,11 +33,10 @@ nlohmann::json outside(const nlohmann::json& option, bool above) {
   return list;
 }
 
-// The options a procedure runs with, every default filled in (what results.json records).
+// The options a procedure runs with, every default filled in (what results.json records),
+// `repeats` among them (the registry's, for every procedure).
 nlohmann::json parse(const std::string& procedure, const nlohmann::json& options) {
-  if (procedure == "static") return StaticTeOptions::from_json(options).to_json();
-  if (procedure == "dynamic") return DynamicTeOptions::from_json(options).to_json();
-  return LostMotionOptions::from_json(options).to_json();
+  return parse_procedure(*find_procedure(procedure), options).options;
 }
 
 class ProcedureSchema : public ::testing::TestWithParam<std::string> {};

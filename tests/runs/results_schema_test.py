@@ -52,6 +52,8 @@ def main():
                                                            "--spec", "sim-seed004"]),
         "lost motion": (sim, ["lost-motion", "--torques", "5,10,20,40", "--no-twin",
                               "--limit", "lost_motion_arcmin=100"]),
+        "static, 2 repeats": (sim, ["static", "--positions", "4", "--loads", "0", "--window", "0.1",
+                                   "--no-twin", "--option", "repeats=2"]),
     }
     failed = False
     produced = {}
@@ -87,6 +89,7 @@ def main():
         "static with the twin, its calibration and the report": ["twin", "report"],
         "dynamic, short, with the twin and a spec": ["dynamic", "twin", "limit_checks", "spec", "verdict"],
         "lost motion": ["lost_motion_fit", "limit_checks"],
+        "static, 2 repeats": ["repeats", "static"],
     }
     for name, keys in expected_sections.items():
         missing = [k for k in keys if name in produced and k not in produced[name]]
@@ -131,11 +134,14 @@ def main():
     b = copy.deepcopy(base); del b["status"]; broken["status missing"] = b
     b = copy.deepcopy(base); b["colour"] = "blue"; broken["unknown top-level key"] = b
     b = copy.deepcopy(base); b["options"]["positions"] = "4"; broken["positions as text"] = b
-    b = copy.deepcopy(base); b["schema"] = "wavebench.results/2"; broken["another major version"] = b
+    b = copy.deepcopy(base); b["schema"] = "wavebench.results/1"; broken["another major version"] = b
+    b = copy.deepcopy(base); b["static"][0]["uncertainty"]["p2p_arcmin"]["expanded"] = "small"
+    broken["an expanded uncertainty as text"] = b
+    b = copy.deepcopy(base); b["limit_checks"][0]["decision"] = "MAYBE"; broken["a check decision that is not PASS, FAIL or UNDECIDED"] = b
     b = copy.deepcopy(base); del b["static"]; broken["complete static run without its passes"] = b
     b = copy.deepcopy(base); b["acquisition"]["log_queue_dropped"] = -1; broken["negative count"] = b
     b = copy.deepcopy(base); b["status"] = "aborted"; broken["aborted without a reason"] = b
-    b = copy.deepcopy(base); b["verdict"] = "MAYBE"; broken["a verdict that is not PASS, FAIL or null"] = b
+    b = copy.deepcopy(base); b["verdict"] = "MAYBE"; broken["a verdict that is not PASS, FAIL, UNDECIDED or null"] = b
     b = copy.deepcopy(base); b["spec"] = {"name": "../x", "model": "M", "lost_motion_at_percent": None,
                                           "limits": []}; broken["a spec name with a path"] = b
     for name, instance in broken.items():

@@ -235,7 +235,8 @@ namespace {
 
 TEST(RunLimits, StaticLostMotionIsLimitedBySizeWhateverItsSign) {
   const nlohmann::json results = {
-      {"lost_motion", {{{"load_nm", 60}, {"lost_motion_arcmin", {-10.4, -10.2}}}}}};
+      {"lost_motion",
+       {{{"load_nm", 60}, {"lost_motion_arcmin", {-10.4, -10.2}}, {"max_abs_arcmin", 10.4}}}}};
   auto v = check_limits({{"static_lost_motion_arcmin", 5.0}}, results);
   ASSERT_TRUE(v.pass);
   EXPECT_FALSE(*v.pass);

@@ -65,7 +65,7 @@ TEST(StaticTeProcedure, EveryPassMatchesTheUnitsTruthWithinATenthOfAnArcminute) 
     for (const auto& [k, v] : entry.items()) keys.push_back(k);
     std::sort(keys.begin(), keys.end());
     EXPECT_EQ(keys, (std::vector<std::string>{"direction", "load_nm", "mean_arcmin", "p2p_arcmin",
-                                              "points", "std_arcmin"}));
+                                              "points", "std_arcmin", "uncertainty"}));
   }
 }
 

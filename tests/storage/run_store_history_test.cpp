@@ -52,6 +52,27 @@ TEST_F(RunHistory, PagesAreNewestFirstAndTheTotalCountsEveryMatch) {
   EXPECT_EQ(store_->count_runs(q), 12u);
 }
 
+TEST_F(RunHistory, AnUndecidedRunIsItsOwnVerdictWhateverItCountsAs) {
+  // Undecided (a limit inside a figure's uncertainty interval), counted as a fail by its spec.
+  const auto id = store_->create_run("static", "C", "cfg", "{}", "csf-25-100");
+  store_->finish_run(id, RunStatus::kComplete, "", false, "UNDECIDED");
+  const auto run = store_->find_run(id);
+  ASSERT_TRUE(run);
+  EXPECT_EQ(run->verdict, "UNDECIDED");
+  EXPECT_EQ(run->pass, std::optional<bool>(false));
+  EXPECT_EQ(to_json(*run)["verdict"], "UNDECIDED");
+  EXPECT_EQ(to_json(*run)["pass"], false);
+  RunQuery undecided;
+  undecided.verdict = RunVerdict::kUndecided;
+  EXPECT_EQ(ids_of(store_->list_runs(undecided)), std::vector<std::string>{id});
+  RunQuery fail;
+  fail.verdict = RunVerdict::kFail;
+  fail.unit_serial = "C";
+  EXPECT_TRUE(store_->list_runs(fail).empty());
+  // Without a verdict string the verdict follows pass, as before.
+  EXPECT_EQ(to_json(*store_->find_run(ids_[1]))["verdict"], "FAIL");
+}
+
 TEST_F(RunHistory, FiltersCombine) {
   RunQuery q;
   q.unit_serial = "A";

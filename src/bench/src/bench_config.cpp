@@ -420,6 +420,8 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
       d.max_brake_torque_nm = std::min(d.max_brake_torque_nm, d.limits.max_brake_torque_nm);
     d.input_encoder_resolution_rad = 2 * M_PI / c.drive.counts_per_revolution;
     d.output_encoder_noise_rad = c.encoder.noise_rad;
+    if (c.encoder.counts_per_turn)
+      d.output_encoder_resolution_rad = 2 * M_PI / *c.encoder.counts_per_turn;
     d.torque_noise_nm = c.torque_sensor.noise_nm;
     try {
       d.twin_gear = config::load_twin_case(d.twin_case_path).gear;

@@ -117,10 +117,12 @@ storage::RunQuery parse_run_history_query(const std::map<std::string, std::strin
         q.verdict = storage::RunVerdict::kPass;
       } else if (value == "fail") {
         q.verdict = storage::RunVerdict::kFail;
+      } else if (value == "undecided") {
+        q.verdict = storage::RunVerdict::kUndecided;
       } else if (value == "none") {
         q.verdict = storage::RunVerdict::kNone;
       } else {
-        refuse(key, value, "pass, fail or none");
+        refuse(key, value, "pass, fail, undecided or none");
       }
     } else if (key == "status") {
       try {

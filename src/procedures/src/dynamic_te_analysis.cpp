@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <random>
 #include <stdexcept>
 
 #include "wavebench/analysis/order_spectrum.hpp"
 #include "wavebench/analysis/spectral_peaks.hpp"
+#include "wavebench/procedures/figure_propagation.hpp"
 
 namespace wavebench::procedures {
 
@@ -53,6 +55,79 @@ void require_increasing(std::span<const double> v, const char* what) {
                                   "; expected a turning gear and increasing timestamps");
     }
   }
+}
+
+// The per-sample budget of a TE record [arcsec]: the encoders' steps, and the rest of the noise
+// the second differences see (they see the quantisation too: it is taken out so that it is
+// not counted twice).
+UncertainFigure sample_budget(std::span<const double> te_arcsec, const GearSense& sense,
+                              const DynamicTeOptions& o) {
+  UncertainFigure f;
+  const double q_out = quantisation_standard(o.output_resolution_rad) * kArcsecPerRad;
+  const double q_in = quantisation_standard(o.input_resolution_rad / sense.ratio) * kArcsecPerRad;
+  const double measured = sample_noise_from_second_differences(te_arcsec);
+  if (q_out > 0) f.add("output encoder quantisation", q_out, 'B', true);
+  if (q_in > 0) f.add("input encoder quantisation (/N)", q_in, 'B', true);
+  f.add("sample noise (second differences)",
+        std::sqrt(std::max(0.0, measured * measured - q_out * q_out - q_in * q_in)), 'A', true);
+  return f;
+}
+
+// Every source of `per_sample` times `factor`: a figure linear in the samples with
+// Σ c_i² = factor².
+UncertainFigure linear_figure(double value, const UncertainFigure& per_sample, double factor) {
+  UncertainFigure f = scaled(per_sample, factor);
+  f.value = value;
+  return f;
+}
+
+struct RecordStatistics {
+  double p2p = 0, rms = 0;
+};
+
+RecordStatistics record_statistics(std::span<const double> v) {
+  double sum = 0, lo = INFINITY, hi = -INFINITY;
+  for (double x : v) {
+    sum += x;
+    lo = std::min(lo, x);
+    hi = std::max(hi, x);
+  }
+  const double mean = sum / static_cast<double>(v.size());
+  double ss = 0;
+  for (double x : v) ss += (x - mean) * (x - mean);
+  return {hi - lo, std::sqrt(ss / static_cast<double>(v.size()))};
+}
+
+// p2p and RMS of a dense record: the linear terms (√2·u for p2p at its two extremes, u/√n for
+// RMS), plus the Monte Carlo remainder (figure_propagation.hpp): with thousands of samples near
+// each extreme the p2p's upward bias is a few u and must be in the budget.
+void add_record_budgets(DynamicTeResult& r, const UncertainFigure& per_sample, int draws) {
+  const double n = static_cast<double>(r.te_arcsec.size());
+  r.mean = linear_figure(r.mean_arcsec, per_sample, 1 / std::sqrt(n));
+  r.p2p = linear_figure(r.p2p_arcsec, per_sample, std::sqrt(2.0));
+  r.rms = linear_figure(r.rms_arcsec, per_sample, 1 / std::sqrt(n));
+  const double u = per_sample.combined_standard();
+  if (draws < 2 || !(u > 0)) return;
+  std::mt19937_64 rng(PropagationOptions{}.seed);
+  std::normal_distribution<double> unit(0.0, u);
+  std::vector<double> perturbed(r.te_arcsec.size());
+  double p_sum = 0, p_ss = 0, r_sum = 0, r_ss = 0;
+  for (int d = 0; d < draws; ++d) {
+    for (std::size_t i = 0; i < perturbed.size(); ++i) perturbed[i] = r.te_arcsec[i] + unit(rng);
+    const auto s = record_statistics(perturbed);
+    p_sum += s.p2p;
+    p_ss += s.p2p * s.p2p;
+    r_sum += s.rms;
+    r_ss += s.rms * s.rms;
+  }
+  const auto excess = [draws](double sum, double ss, const UncertainFigure& f) {
+    const double m = sum / draws;
+    const double var = std::max(0.0, (ss - draws * m * m) / (draws - 1));
+    const double lin = f.combined_standard();
+    return std::sqrt(std::max(0.0, var - lin * lin)) + std::abs(m - f.value);
+  };
+  r.p2p.add(kExtremeSelectionSource, excess(p_sum, p_ss, r.p2p), 'A', false);
+  r.rms.add(kExtremeSelectionSource, excess(r_sum, r_ss, r.rms), 'A', false);
 }
 
 }  // namespace
@@ -128,6 +203,8 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
   double squares = 0;
   for (double v : r.te_arcsec) squares += (v - r.mean_arcsec) * (v - r.mean_arcsec);
   r.rms_arcsec = std::sqrt(squares / static_cast<double>(n));
+  const UncertainFigure per_sample = sample_budget(r.te_arcsec, sense, options);
+  add_record_budgets(r, per_sample, options.monte_carlo_draws);
 
   r.spectrum_hz = spectrum_on_timestamps(r.time_s, r.te_arcsec, options.window, analyser);
 
@@ -166,6 +243,10 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
     named.order_input = p.frequency_hz / sense.ratio;
     named.frequency_hz = p.frequency_hz * output_hz;
     named.amplitude_arcsec = p.amplitude;
+    // A line's amplitude in a Hann-windowed spectrum of n samples with white noise of standard
+    // u per sample: u·√(2Σw²)/Σw = u·√(3/n) (Σw = n/2, Σw² = 3n/8).
+    named.amplitude = linear_figure(p.amplitude, per_sample,
+                                    std::sqrt(3.0 / static_cast<double>(resampled.size())));
     named.name = "unnamed";
     double best = tolerance;
     for (const auto& candidate : names) {
@@ -196,7 +277,8 @@ nlohmann::json to_json(const DynamicTeResult& r) {
                      {"order_output", p.order_output},
                      {"order_input", p.order_input},
                      {"frequency_hz", p.frequency_hz},
-                     {"amplitude_arcsec", p.amplitude_arcsec}});
+                     {"amplitude_arcsec", p.amplitude_arcsec},
+                     {"uncertainty", {{"amplitude_arcsec", to_json(p.amplitude)}}}});
   }
   nlohmann::json aliased = nlohmann::json::array();
   for (const auto& a : r.aliased) {
@@ -213,7 +295,11 @@ nlohmann::json to_json(const DynamicTeResult& r) {
           {"nyquist_hz", r.nyquist_hz},
           {"output_revolutions", r.output_revolutions},
           {"peaks", peaks},
-          {"aliased", aliased}};
+          {"aliased", aliased},
+          {"uncertainty",
+           {{"mean_arcsec", to_json(r.mean)},
+            {"p2p_arcsec", to_json(r.p2p)},
+            {"rms_arcsec", to_json(r.rms)}}}};
 }
 
 }  // namespace wavebench::procedures

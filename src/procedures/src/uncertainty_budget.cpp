@@ -2,11 +2,13 @@
 
 #include <cmath>
 #include <numeric>
+#include <stdexcept>
 
 namespace wavebench::procedures {
 
-UncertainFigure& UncertainFigure::add(std::string source, double standard, char evaluation) {
-  budget.push_back({std::move(source), evaluation, std::abs(standard)});
+UncertainFigure& UncertainFigure::add(std::string source, double standard, char evaluation,
+                                      bool varies_between_repeats) {
+  budget.push_back({std::move(source), evaluation, std::abs(standard), varies_between_repeats});
   return *this;
 }
 
@@ -46,13 +48,37 @@ nlohmann::json to_json(const UncertainFigure& figure, double scale) {
   for (const auto& c : figure.budget) {
     budget.push_back({{"source", c.source},
                       {"type", std::string(1, c.evaluation)},
-                      {"standard", c.standard * scale}});
+                      {"standard", c.standard * scale},
+                      {"varies_between_repeats", c.varies_between_repeats}});
   }
   return {{"value", figure.value * scale},
           {"expanded", figure.expanded() * scale},
           {"k", figure.coverage_factor},
           {"combined_standard", figure.combined_standard() * scale},
           {"budget", budget}};
+}
+
+bool is_uncertain_figure_json(const nlohmann::json& j) {
+  return j.is_object() && j.contains("value") && j["value"].is_number() && j.contains("expanded") &&
+         j["expanded"].is_number() && j.contains("budget") && j["budget"].is_array();
+}
+
+UncertainFigure uncertain_figure_from_json(const nlohmann::json& j, double scale) {
+  if (!is_uncertain_figure_json(j)) {
+    throw std::invalid_argument("uncertain figure: got '" + j.dump().substr(0, 80) +
+                                "', expected an object with value, expanded and budget");
+  }
+  UncertainFigure f;
+  f.value = j["value"].get<double>() / scale;
+  if (const auto k = j.find("k"); k != j.end() && k->is_number())
+    f.coverage_factor = k->get<double>();
+  for (const auto& c : j["budget"]) {
+    if (!c.is_object()) continue;
+    const std::string type = c.value("type", std::string("B"));
+    f.add(c.value("source", std::string()), c.value("standard", 0.0) / scale,
+          type.empty() ? 'B' : type[0], c.value("varies_between_repeats", false));
+  }
+  return f;
 }
 
 const char* decision_name(LimitDecision decision) {

@@ -43,6 +43,19 @@ std::string sample_facts(const RunFolder& run) {
          " cycles missed, " + std::to_string(incomplete) + " incomplete";
 }
 
+// "forward 60 N*m", "mesh": what an entry of a figure group is, from whichever of its
+// direction, name and load it has (malformed values are left out, not thrown over).
+std::string budget_label(const json& entry) {
+  std::string label;
+  for (const char* key : {"direction", "name"}) {
+    if (const auto it = entry.find(key); it != entry.end() && it->is_string()) {
+      label += (label.empty() ? "" : " ") + it->get<std::string>();
+    }
+  }
+  if (const auto load = number(entry, "load_nm")) label += " " + general(*load) + " N*m";
+  return label;
+}
+
 }  // namespace
 
 RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
@@ -59,6 +72,17 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
       {"unit serial", {run.field("unit_serial", "\u2013"), {}, false}},
       {"status", status_cell(run)},
   };
+  if (const auto v = run.results.find("verdict"); v != run.results.end() && v->is_string()) {
+    std::string shown = v->get<std::string>();
+    if (shown == "UNDECIDED") {
+      const auto it = run.results.find("undecided_counts_as");
+      const std::string counts =
+          it != run.results.end() && it->is_string() ? it->get<std::string>() : "fail";
+      shown += counts == "undecided" ? " (no acceptance decision)"
+                                     : " (counts as " + counts + " for acceptance)";
+    }
+    facts.push_back({"verdict", {shown, {}, v->get<std::string>() != "PASS"}});
+  }
   if (const std::string pass = run.field("pass"); !pass.empty() && pass != "null") {
     facts.push_back({"pass", {pass, {}, pass == "false"}});
   }
@@ -103,6 +127,26 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable shift = load_shift_table(false);
     add_load_shift_rows(shift, run, std::nullopt);
     add_table(page, shift);
+    HtmlTable budget = budget_table("static TE");
+    for (const auto& p : *passes) {
+      if (!p.is_object()) continue;
+      add_budget_rows(budget, p, budget_label(p));
+    }
+    add_table(page, budget);
+    HtmlTable lm_budget = budget_table("lost motion and load shift (static)");
+    if (const json* profiles = lost_motion_profiles(run.results)) {
+      for (const auto& p : *profiles) {
+        if (!p.is_object()) continue;
+        add_budget_rows(lm_budget, p, "lost motion" + budget_label(p));
+      }
+    }
+    if (const json* shifts = load_shifts(run.results)) {
+      for (const auto& p : *shifts) {
+        if (!p.is_object()) continue;
+        add_budget_rows(lm_budget, p, budget_label(p));
+      }
+    }
+    add_table(page, lm_budget);
   }
 
   // Dynamic TE.
@@ -133,6 +177,14 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable aliased = aliased_table();
     add_aliased_rows(aliased, run);
     add_table(page, aliased);
+    HtmlTable budget = budget_table("dynamic TE");
+    add_budget_rows(budget, *dyn, "");
+    if (const auto lines = dyn->find("peaks"); lines != dyn->end() && lines->is_array()) {
+      for (const auto& p : *lines) {
+        if (p.is_object()) add_budget_rows(budget, p, budget_label(p));
+      }
+    }
+    add_table(page, budget);
   }
 
   // Lost motion, hysteresis, stiffness.
@@ -142,6 +194,10 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable t = stiffness_table(false);
     add_stiffness_rows(t, run, std::nullopt);
     add_table(page, t);
+    HtmlTable budget = budget_table("lost motion and stiffness");
+    add_budget_rows(budget, *fit, "");
+    if (const auto k = fit->find("stiffness"); k != fit->end()) add_budget_rows(budget, *k, "");
+    add_table(page, budget);
   }
   std::optional<TorqueTwistCurve> curve;
   if (fit) curve = torque_twist_from_results(*fit);

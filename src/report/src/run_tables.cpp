@@ -15,6 +15,35 @@ std::string num(const json& j, const std::string& key, int decimals) {
   return v ? fixed(*v, decimals) : "\u2013";
 }
 
+// The expanded uncertainty of figure `key` of `j` (its `uncertainty` entry), when stated.
+std::optional<double> expanded_of(const json& j, const std::string& key) {
+  const auto u = j.find("uncertainty");
+  if (u == j.end() || !u->is_object()) return std::nullopt;
+  const auto f = u->find(key);
+  if (f == u->end() || !f->is_object()) return std::nullopt;
+  return number(*f, "expanded");
+}
+
+// "5.703 ± 0.018": the figure with its expanded uncertainty (k = 2) when results.json states
+// one, with as many decimals as U needs for two significant digits (at least `decimals`).
+std::string pm(const json& j, const std::string& key, int decimals) {
+  const auto v = number(j, key);
+  if (!v) return "\u2013";
+  const auto u = expanded_of(j, key);
+  if (!u) return fixed(*v, decimals);
+  if (*u > 0 && std::isfinite(*u)) {
+    decimals = std::clamp(1 - static_cast<int>(std::floor(std::log10(*u))), decimals, 9);
+  }
+  return fixed(*v, decimals) + " \u00b1 " + fixed(*u, decimals);
+}
+
+std::string gpm(const json& j, const std::string& key) {
+  const auto v = number(j, key);
+  if (!v) return "\u2013";
+  const auto u = expanded_of(j, key);
+  return u ? general(*v) + " \u00b1 " + general(*u, 2) : general(*v);
+}
+
 std::string gnum(const json& j, const std::string& key) {
   const auto v = number(j, key);
   return v ? general(*v) : "\u2013";
@@ -83,7 +112,7 @@ void add_run_row(HtmlTable& table, const RunFolder& run, const HtmlCell& run_cel
 HtmlTable static_te_table(bool with_run) {
   auto t = with_header(with_run, {"direction", "load [N*m]", "mean [arcmin]", "p2p [arcmin]",
                                   "std [arcmin]", "points"});
-  t.caption = "Static TE per direction and load";
+  t.caption = "Static TE per direction and load (value \u00b1 U, k = 2)";
   return t;
 }
 
@@ -94,8 +123,8 @@ void add_static_te_rows(HtmlTable& table, const RunFolder& run, const RunCell& r
     if (!p.is_object()) continue;
     const auto pts = p.find("points");
     push(table, run_cell,
-         {text(p, "direction"), num(p, "load_nm", 1), num(p, "mean_arcmin", 2),
-          num(p, "p2p_arcmin", 2), num(p, "std_arcmin", 2),
+         {text(p, "direction"), num(p, "load_nm", 1), pm(p, "mean_arcmin", 2),
+          pm(p, "p2p_arcmin", 2), pm(p, "std_arcmin", 2),
           pts != p.end() && pts->is_array() ? std::to_string(pts->size()) : "\u2013"});
   }
 }
@@ -112,8 +141,7 @@ void add_static_lost_motion_rows(HtmlTable& table, const RunFolder& run, const R
   if (!profiles) return;
   for (const auto& p : *profiles) {
     if (!p.is_object()) continue;
-    push(table, run_cell,
-         {num(p, "load_nm", 1), num(p, "mean_arcmin", 2), num(p, "max_arcmin", 2)});
+    push(table, run_cell, {num(p, "load_nm", 1), pm(p, "mean_arcmin", 2), pm(p, "max_arcmin", 2)});
   }
 }
 
@@ -132,7 +160,7 @@ void add_load_shift_rows(HtmlTable& table, const RunFolder& run, const RunCell& 
     const auto k = number(s, "stiffness_nm_per_rad");
     push(table, run_cell,
          {text(s, "direction"), num(s, "load_nm", 1), num(s, "reference_load_nm", 1),
-          num(s, "shift_arcmin", 2), k ? general(*k) : "\u2013",
+          pm(s, "shift_arcmin", 2), k ? gpm(s, "stiffness_nm_per_rad") : "\u2013",
           k ? general(*k / kArcminPerRad) : "\u2013"});
   }
 }
@@ -141,7 +169,7 @@ HtmlTable dynamic_te_table(bool with_run) {
   auto t =
       with_header(with_run, {"mean [arcsec]", "p2p [arcsec]", "RMS [arcsec]", "input speed [rpm]",
                              "output revolutions", "sample rate [Hz]", "named peaks", "aliased"});
-  t.caption = "Dynamic TE";
+  t.caption = "Dynamic TE (value \u00b1 U, k = 2)";
   return t;
 }
 
@@ -154,7 +182,7 @@ void add_dynamic_te_rows(HtmlTable& table, const RunFolder& run, const RunCell& 
     return it != d->end() && it->is_array() ? std::to_string(it->size()) : "\u2013";
   };
   push(table, run_cell,
-       {num(*d, "mean_arcsec", 2), num(*d, "p2p_arcsec", 2), num(*d, "rms_arcsec", 2),
+       {pm(*d, "mean_arcsec", 2), pm(*d, "p2p_arcsec", 2), pm(*d, "rms_arcsec", 2),
         f_in ? fixed(*f_in * 60, 1) : "\u2013", num(*d, "output_revolutions", 2),
         num(*d, "sample_rate_hz", 1), count("peaks"), count("aliased")});
 }
@@ -173,7 +201,7 @@ void add_peak_rows(HtmlTable& table, const RunFolder& run) {
     if (!p.is_object()) continue;
     push(table, std::nullopt,
          {text(p, "name"), num(p, "order_output", 2), num(p, "order_input", 3),
-          num(p, "frequency_hz", 3), num(p, "amplitude_arcsec", 3)});
+          num(p, "frequency_hz", 3), pm(p, "amplitude_arcsec", 3)});
   }
 }
 
@@ -201,7 +229,7 @@ HtmlTable stiffness_table(bool with_run) {
   auto t = with_header(with_run, {"lost motion [arcmin]", "at +/- [N*m]", "backlash [arcmin]",
                                   "hysteresis loss [J]", "K1 [N*m/rad]", "K2 [N*m/rad]",
                                   "K3 [N*m/rad]", "T1 [N*m]", "T2 [N*m]", "fit RMS [arcsec]"});
-  t.caption = "Lost motion, hysteresis and stiffness";
+  t.caption = "Lost motion, hysteresis and stiffness (value \u00b1 U, k = 2)";
   return t;
 }
 
@@ -210,15 +238,18 @@ void add_stiffness_rows(HtmlTable& table, const RunFolder& run, const RunCell& r
   if (!f) return;
   const json& k = (*f)["stiffness"];
   push(table, run_cell,
-       {num(*f, "lost_motion_arcmin", 2), num(*f, "lost_motion_torque_nm", 2),
-        num(*f, "backlash_arcmin", 2), gnum(*f, "hysteresis_loss_j"), gnum(k, "k1_nm_per_rad"),
-        gnum(k, "k2_nm_per_rad"), gnum(k, "k3_nm_per_rad"), num(k, "t1_nm", 2), num(k, "t2_nm", 2),
+       {pm(*f, "lost_motion_arcmin", 2), num(*f, "lost_motion_torque_nm", 2),
+        pm(*f, "backlash_arcmin", 2), gnum(*f, "hysteresis_loss_j"), gpm(k, "k1_nm_per_rad"),
+        gpm(k, "k2_nm_per_rad"), gpm(k, "k3_nm_per_rad"), pm(k, "t1_nm", 2), pm(k, "t2_nm", 2),
         num(k, "rms_residual_arcsec", 2)});
 }
 
 HtmlTable limits_table() {
-  auto t = with_header(false, {"limit", "what", "limit value", "measured", "verdict"});
-  t.caption = "Limits";
+  auto t =
+      with_header(false, {"limit", "what", "limit value", "measured \u00b1 U (k = 2)", "decision"});
+  t.caption =
+      "Limits, guard-banded (ISO 14253-1): PASS when value \u00b1 U lies wholly within the "
+      "limit, FAIL when wholly beyond it, UNDECIDED when the limit lies inside the interval";
   return t;
 }
 
@@ -230,15 +261,46 @@ void add_limit_rows(HtmlTable& table, const RunFolder& run) {
     const auto pass = c.find("pass");
     const bool failed = pass != c.end() && pass->is_boolean() && !pass->get<bool>();
     const bool passed = pass != c.end() && pass->is_boolean() && pass->get<bool>();
+    // The decision as ISO 14253-1 gives it; older runs have only `pass`.
+    const auto d = c.find("decision");
+    std::string decision = d != c.end() && d->is_string() ? d->get<std::string>() : "";
+    if (decision.empty()) decision = failed ? "FAIL" : passed ? "PASS" : "\u2013";
+    std::string measured = gnum(c, "measured");
+    if (const auto u = number(c, "expanded");
+        u && !(c.contains("uncertainty_stated") && c["uncertainty_stated"] == false)) {
+      measured += " \u00b1 " + general(*u, 2);
+    }
     table.rows.push_back({{text(c, "limit"), {}, false},
                           {text(c, "what"), {}, false},
                           {gnum(c, "value"), {}, false},
-                          {gnum(c, "measured"), {}, false},
-                          {failed   ? "fail"
-                           : passed ? "pass"
-                                    : "\u2013",
-                           {},
-                           failed}});
+                          {measured, {}, false},
+                          {decision, {}, decision != "PASS"}});
+  }
+}
+
+HtmlTable budget_table(const std::string& group) {
+  auto t = with_header(false, {"figure", "source", "type", "standard u", "u_c", "U (k = 2)"});
+  t.caption = "Uncertainty budget: " + group +
+              " (GUM: standard uncertainties in the figure's unit, sensitivity applied, root sum "
+              "of squares; type A statistical, B otherwise)";
+  return t;
+}
+
+void add_budget_rows(HtmlTable& table, const json& object, const std::string& label) {
+  if (!object.is_object()) return;
+  const auto u = object.find("uncertainty");
+  if (u == object.end() || !u->is_object()) return;
+  for (const auto& [key, figure] : u->items()) {
+    if (!figure.is_object() || !figure.contains("budget") || !figure["budget"].is_array()) continue;
+    const std::string name = label.empty() ? key : label + " " + key;
+    bool first = true;
+    for (const auto& c : figure["budget"]) {
+      push(table, std::nullopt,
+           {first ? name + " = " + gnum(figure, "value") : "", text(c, "source"), text(c, "type"),
+            gnum(c, "standard"), first ? gnum(figure, "combined_standard") : "",
+            first ? gnum(figure, "expanded") : ""});
+      first = false;
+    }
   }
 }
 

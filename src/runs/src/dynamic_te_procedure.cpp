@@ -193,6 +193,8 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   procedures::DynamicTeOptions analysis;
   analysis.max_peaks = o.max_peaks;
   analysis.harmonics = o.harmonics;
+  analysis.input_resolution_rad = d.input_encoder_resolution_rad;
+  analysis.output_resolution_rad = d.output_encoder_resolution_rad;
   analysis::SpectrumAnalyser analyser;
   out.result = procedures::analyse_dynamic_te(input.time_s, input.theta_in_rad, input.theta_out_rad,
                                               d.sense, out.teeth, predicted, analysis, analyser);

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "wavebench/procedures/figure_propagation.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
 #include "wavebench/runs/dynamic_te_procedure.hpp"
 #include "wavebench/runs/option_reader.hpp"
@@ -29,14 +30,17 @@ double ladder_cap_nm(const bench::BenchDescription& d) {
 // Twist and torque averaged over the samples whose output angle lies in [lo, hi].
 procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSample>& samples,
                                             const procedures::GearSense& sense, double lo,
-                                            double hi, int travel, double torque_nm) {
+                                            double hi, int travel, double torque_nm,
+                                            std::vector<double>& noise_rad) {
   double twist = 0, torque = 0;
   int angles = 0, torques = 0;
+  std::vector<double> twists;
   for (const auto& s : samples) {
     if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) continue;
     const double theta2 = sense.model_output_angle(s.theta_out_rad);
     if (theta2 < lo || theta2 > hi) continue;
     twist -= sense.transmission_error(s.theta_in_rad, s.theta_out_rad);
+    twists.push_back(-sense.transmission_error(s.theta_in_rad, s.theta_out_rad));
     ++angles;
     if (s.valid(storage::kTorqueValid)) {
       torque += sense.direction_sign * s.torque_nm;
@@ -51,6 +55,9 @@ procedures::TorqueTwistPoint window_average(const std::vector<storage::SyncSampl
          "ladder's cap)";
     throw std::runtime_error(m.str());
   }
+  // The twist moves with the TE over the window: its noise from second differences, white.
+  noise_rad.push_back(procedures::sample_noise_from_second_differences(twists) /
+                      std::sqrt(static_cast<double>(angles)));
   return {torque / torques, twist / angles, travel};
 }
 
@@ -133,6 +140,8 @@ nlohmann::json LostMotionOptions::to_json() const {
 
 nlohmann::json LostMotionOutcome::to_json() const {
   nlohmann::json j = procedures::to_json(result);
+  j["uncertainty"] = procedures::fit_uncertainty_json(uncertainty);
+  j["stiffness"]["uncertainty"] = procedures::stiffness_uncertainty_json(uncertainty);
   j["rated_torque_nm"] = rated_torque_nm;
   j["ladder_nm"] = ladder_nm;
   nlohmann::json points = nlohmann::json::array();
@@ -214,6 +223,7 @@ LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
   SampleRecorder recorder;
   ObserverRegistration registration(bench, recorder);
   std::vector<procedures::TorqueTwistPoint> forward, reverse;
+  std::vector<double> forward_noise, reverse_noise;
   for (std::size_t i = 0; i < out.ladder_nm.size(); ++i) {
     const double t = out.ladder_nm[i];
     std::ostringstream phase;
@@ -224,11 +234,11 @@ LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
     recorder.start();
     bench.move_input_to(end_in, o.input_speed_rad_s);
     recorder.stop();
-    forward.push_back(window_average(recorder.samples(), sense, lo, hi, +1, t));
+    forward.push_back(window_average(recorder.samples(), sense, lo, hi, +1, t, forward_noise));
     recorder.start();
     bench.move_input_to(start_in, o.input_speed_rad_s);
     recorder.stop();
-    reverse.push_back(window_average(recorder.samples(), sense, lo, hi, -1, t));
+    reverse.push_back(window_average(recorder.samples(), sense, lo, hi, -1, t, reverse_noise));
   }
   bench.set_brake_torque(0);
   if (progress) progress("lost motion fit", 0.98);
@@ -237,6 +247,14 @@ LostMotionOutcome LostMotionProcedure::run(bench::Bench& bench,
   out.record = forward;
   out.record.insert(out.record.end(), reverse.rbegin(), reverse.rend());
   out.result = procedures::analyse_lost_motion(out.record, fit);
+  procedures::LostMotionUncertaintyInputs inputs;
+  inputs.input_resolution_rad = d.input_encoder_resolution_rad;
+  inputs.output_resolution_rad = d.output_encoder_resolution_rad;
+  inputs.ratio = sense.ratio;
+  inputs.twist_noise_rad = forward_noise;
+  inputs.twist_noise_rad.insert(inputs.twist_noise_rad.end(), reverse_noise.rbegin(),
+                                reverse_noise.rend());
+  out.uncertainty = procedures::lost_motion_uncertainty(out.record, fit, out.result, inputs);
   if (progress) progress("lost motion done", 1.0);
   return out;
 }

@@ -63,8 +63,9 @@ ParsedRequest parse_request(const RunRequest& request) {
   if (request.spec && request.spec->lost_motion_fraction && request.procedure == "lost-motion") {
     apply_lost_motion_fraction(*request.spec, options);
   }
-  auto parsed = entry->parse(options);
-  return {std::move(parsed.procedure), std::move(parsed.options), limits, calibrate};
+  auto parsed = parse_procedure(*entry, options);
+  return {std::move(parsed.procedure), std::move(parsed.options), limits, calibrate,
+          parsed.repeats};
 }
 
 }  // namespace wavebench::runs

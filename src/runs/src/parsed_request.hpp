@@ -14,6 +14,7 @@ struct ParsedRequest {
   nlohmann::json procedure_options;
   nlohmann::json limits = nlohmann::json::object();
   bool calibrate_twin = true;
+  int repeats = 1;
 };
 
 // Throws std::invalid_argument naming the key, the value and what was expected.

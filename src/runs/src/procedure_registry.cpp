@@ -11,7 +11,7 @@ namespace {
 template <class Options, class Procedure>
 ParsedProcedure parse_as(const nlohmann::json& options) {
   const auto o = Options::from_json(options);
-  return {Procedure(o), o.to_json()};
+  return {Procedure(o), o.to_json(), 1};
 }
 
 const std::array<ProcedureEntry, 3> kProcedures{{
@@ -30,6 +30,45 @@ const std::array<ProcedureEntry, 3> kProcedures{{
 }};
 
 }  // namespace
+
+namespace {
+
+void declare_repeats(OptionReader& r, int& repeats) {
+  r.integer(kRepeatsKey, repeats, 1, kMaxRepeats,
+            {"",
+             "the procedure run this many times; figures are the mean, the spread between "
+             "repeats enters their uncertainty"});
+}
+
+}  // namespace
+
+OptionSpec repeats_option_spec() {
+  int repeats = 1;
+  OptionReader r("run");
+  declare_repeats(r, repeats);
+  return r.described().front();
+}
+
+std::vector<OptionSpec> procedure_options(const ProcedureEntry& entry) {
+  auto options = entry.options();
+  options.push_back(repeats_option_spec());
+  return options;
+}
+
+ParsedProcedure parse_procedure(const ProcedureEntry& entry, const nlohmann::json& options) {
+  nlohmann::json own = options;
+  int repeats = 1;
+  if (own.is_object() && own.contains(kRepeatsKey)) {
+    const nlohmann::json given = {{kRepeatsKey, own[kRepeatsKey]}};
+    OptionReader r(given, entry.name, {repeats_option_spec()});
+    declare_repeats(r, repeats);
+    own.erase(kRepeatsKey);
+  }
+  auto parsed = entry.parse(own);
+  parsed.repeats = repeats;
+  parsed.options[kRepeatsKey] = repeats;
+  return parsed;
+}
 
 std::span<const ProcedureEntry> procedure_entries() {
   return kProcedures;
@@ -55,7 +94,7 @@ nlohmann::json procedures_json() {
   nlohmann::json list = nlohmann::json::array();
   for (const auto& p : kProcedures) {
     nlohmann::json options = nlohmann::json::array();
-    for (const auto& o : p.options()) options.push_back(o.to_json());
+    for (const auto& o : procedure_options(p)) options.push_back(o.to_json());
     list.push_back({{"name", p.name},
                     {"title", p.title},
                     {"description", p.description},

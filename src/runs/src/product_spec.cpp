@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "quoted_value.hpp"
+#include "verdict_table.hpp"
 #include "wavebench/config/shipped_configs.hpp"
 #include "wavebench/strict_yaml/strict_yaml.hpp"
 #include "wavebench/strict_yaml/yaml_section.hpp"
@@ -21,28 +22,6 @@ using strict_yaml::Dimension;
 
 constexpr std::size_t kMaxSpecName = 64;
 constexpr std::size_t kListedSpecs = 20;
-constexpr double kArcmin = std::numbers::pi / 10800;
-constexpr double kArcsec = kArcmin / 60;
-
-struct LimitKind {
-  const char* key;
-  const char* limit;
-  Dimension dimension;
-  const char* unit;  // the unit of the run_limits key
-  double per_unit;   // SI per `unit`
-};
-
-constexpr std::array<LimitKind, 9> kKinds{{
-    {"static_te_p2p", "static_p2p_arcmin", Dimension::kAngle, "arcmin", kArcmin},
-    {"static_te_std", "static_std_arcmin", Dimension::kAngle, "arcmin", kArcmin},
-    {"static_te_abs_mean", "static_abs_mean_arcmin", Dimension::kAngle, "arcmin", kArcmin},
-    {"static_lost_motion", "static_lost_motion_arcmin", Dimension::kAngle, "arcmin", kArcmin},
-    {"lost_motion", "lost_motion_arcmin", Dimension::kAngle, "arcmin", kArcmin},
-    {"min_k1", "min_stiffness_nm_per_rad", Dimension::kStiffness, "N*m/rad", 1},
-    {"dynamic_te_p2p", "dynamic_p2p_arcsec", Dimension::kAngle, "arcsec", kArcsec},
-    {"dynamic_te_rms", "dynamic_rms_arcsec", Dimension::kAngle, "arcsec", kArcsec},
-    {"twin_residual_rms", "twin_residual_rms_arcsec", Dimension::kAngle, "arcsec", kArcsec},
-}};
 
 // A limit without its unit would be read as SI (radians): 1.0 meant as arcmin is 3438 arcmin.
 bool has_unit(const std::string& text) {
@@ -67,16 +46,21 @@ ProductSpec read_spec(strict_yaml::YamlSection& doc, const std::string& name) {
   spec.name = name;
   spec.model = doc.text("model");
   spec.description = doc.text_or("description", "");
+  if (const auto u = doc.optional_choice("undecided", {"fail", "pass", "undecided"})) {
+    spec.undecided = *u == "pass"        ? UndecidedCounts::kPass
+                     : *u == "undecided" ? UndecidedCounts::kUndecided
+                                         : UndecidedCounts::kFail;
+  }
   auto limits = doc.section("limits");
-  for (const auto& k : kKinds) {
-    if (!limits.has(k.key)) continue;
-    const std::string written = limits.value_text(k.key);
+  for (const auto& k : verdict_figures()) {
+    if (!limits.has(k.spec_key)) continue;
+    const std::string written = limits.value_text(k.spec_key);
     if (!has_unit(written)) {
-      limits.fail(k.key, written,
+      limits.fail(k.spec_key, written,
                   "a value > 0 with its unit: " + strict_yaml::describe(k.dimension));
     }
-    const double si = limits.positive_quantity(k.key, k.dimension);
-    spec.limits.push_back({k.key, k.limit, to_12_digits(si / k.per_unit), k.unit});
+    const double si = limits.positive_quantity(k.spec_key, k.dimension);
+    spec.limits.push_back({k.spec_key, k.limit, to_12_digits(si / k.per_unit), k.unit});
   }
   if (limits.has("lost_motion_at")) {
     const std::string written = limits.value_text("lost_motion_at");
@@ -116,6 +100,7 @@ nlohmann::json ProductSpec::to_json() const {
           {"description", description},
           {"lost_motion_at_percent",
            lost_motion_fraction ? nlohmann::json(*lost_motion_fraction * 100) : nlohmann::json()},
+          {"undecided", undecided_counts_name(undecided)},
           {"limits", list}};
 }
 

@@ -7,6 +7,7 @@
 
 #include "beside_idling_bench.hpp"
 #include "parsed_request.hpp"
+#include "repeat_combination.hpp"
 #include "run_request_check_detail.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
 #include "wavebench/runs/run_limits.hpp"
@@ -40,8 +41,8 @@ struct ProcedureResult {
   std::optional<procedures::StaticTeResult> static_result;
 };
 
-ProcedureResult run_procedure(AnyProcedure& procedure, bench::Bench& bench,
-                              const ProcedureProgress& progress) {
+ProcedureResult run_once(AnyProcedure& procedure, bench::Bench& bench,
+                         const ProcedureProgress& progress) {
   ProcedureResult r;
   if (auto* p = std::get_if<StaticTeProcedure>(&procedure)) {
     auto out = p->run(bench, progress);
@@ -53,6 +54,27 @@ ProcedureResult run_procedure(AnyProcedure& procedure, bench::Bench& bench,
     r.json["lost_motion_fit"] = l->run(bench, progress).to_json();
   }
   return r;
+}
+
+// The procedure `repeats` times, generically (any alternative of AnyProcedure): each repeat's
+// sections in `repeats`, the run's sections their combination (repeat_combination.hpp). The
+// twin calibration takes the first repeat's static result.
+ProcedureResult run_procedure(AnyProcedure& procedure, bench::Bench& bench, int repeats,
+                              const ProcedureProgress& progress) {
+  if (repeats <= 1) return run_once(procedure, bench, progress);
+  ProcedureResult first;
+  std::vector<nlohmann::json> sections;
+  for (int i = 0; i < repeats; ++i) {
+    const std::string label = "repeat " + std::to_string(i + 1) + "/" + std::to_string(repeats);
+    auto r = run_once(procedure, bench, [&](const std::string& phase, double f) {
+      if (progress) progress(label + ": " + phase, (i + f) / repeats);
+    });
+    sections.push_back(std::move(r.json));
+    if (i == 0) first.static_result = std::move(r.static_result);
+  }
+  first.json = combine_repeats(sections);
+  first.json["repeats"] = std::move(sections);
+  return first;
 }
 
 // After a failure that is not a trip (e.g. a move that never reached its target): brake
@@ -105,6 +127,7 @@ nlohmann::json spec_json(const ProductSpec& spec) {
   return {{"name", j["name"]},
           {"model", j["model"]},
           {"lost_motion_at_percent", j["lost_motion_at_percent"]},
+          {"undecided", j["undecided"]},
           {"limits", j["limits"]}};
 }
 
@@ -198,7 +221,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       report_progress(request.procedure + " start", 0);
       try {
         procedure_result = run_procedure(
-            parsed.procedure, bench,
+            parsed.procedure, bench, parsed.repeats,
             [&](const std::string& phase, double f) { report_progress(phase, 0.9 * f); });
       } catch (const bench::BenchAborted& e) {
         // A trip the log asked for is reported as the log's failure, not as an operator stop.
@@ -267,16 +290,22 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
     results["status"] = storage::run_status_name(outcome.status);
     if (outcome.status != storage::RunStatus::kComplete) results["reason"] = outcome.reason;
     std::optional<bool> pass;
+    std::optional<procedures::LimitDecision> decision;
     if (outcome.status == storage::RunStatus::kComplete) {
-      auto verdict = check_limits(parsed.limits, results);
+      const auto undecided = request.spec ? request.spec->undecided : UndecidedCounts::kFail;
+      auto verdict = check_limits(parsed.limits, results, undecided);
       pass = verdict.pass;
+      decision = verdict.decision;
       results["limit_checks"] = verdict.checks;
       results["pass"] = pass ? nlohmann::json(*pass) : nlohmann::json();
+      results["undecided_counts_as"] = undecided_counts_name(undecided);
     }
-    results["verdict"] = pass ? nlohmann::json(*pass ? "PASS" : "FAIL") : nlohmann::json();
+    results["verdict"] =
+        decision ? nlohmann::json(procedures::decision_name(*decision)) : nlohmann::json();
     write_results_if_possible(store, outcome.run_id, results);
     try {
-      store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass);
+      store.finish_run(outcome.run_id, outcome.status, outcome.reason, pass,
+                       decision ? procedures::decision_name(*decision) : "");
     } catch (const std::exception& e) {
       // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
       // next start of a store marks it incomplete; the caller still learns the status here.

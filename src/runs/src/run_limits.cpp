@@ -1,47 +1,48 @@
 #include "wavebench/runs/run_limits.hpp"
 
-#include <algorithm>
 #include <cmath>
-#include <limits>
 #include <stdexcept>
 #include <string>
 
 #include "quoted_value.hpp"
+#include "verdict_table.hpp"
+#include "wavebench/procedures/figure_propagation.hpp"
 
 namespace wavebench::runs {
 
 namespace {
 
-constexpr const char* kLimits[] = {
-    "static_p2p_arcmin",         "static_std_arcmin",  "static_abs_mean_arcmin",
-    "static_lost_motion_arcmin", "lost_motion_arcmin", "min_stiffness_nm_per_rad",
-    "dynamic_p2p_arcsec",        "dynamic_rms_arcsec", "twin_residual_rms_arcsec"};
+using procedures::LimitDecision;
 
-class Checker {
- public:
-  Checker(const nlohmann::json& limits, LimitVerdict& verdict) : limits_(limits), v_(verdict) {}
-  // measured <= limit (or >= for a minimum)
-  void check(const char* key, double measured, const std::string& what, bool minimum = false) {
-    if (!limits_.contains(key) || !std::isfinite(measured)) return;
-    const double limit = limits_.at(key).get<double>();
-    const bool ok = minimum ? measured >= limit : measured <= limit;
-    v_.checks.push_back(
-        {{"limit", key}, {"value", limit}, {"measured", measured}, {"what", what}, {"pass", ok}});
-    v_.pass = v_.pass.value_or(true) && ok;
-  }
+// FAIL outranks UNDECIDED outranks PASS.
+LimitDecision worse(LimitDecision a, LimitDecision b) {
+  const auto rank = [](LimitDecision d) {
+    return d == LimitDecision::kFail ? 2 : d == LimitDecision::kUndecided ? 1 : 0;
+  };
+  return rank(a) >= rank(b) ? a : b;
+}
 
- private:
-  const nlohmann::json& limits_;
-  LimitVerdict& v_;
-};
-
-double num(const nlohmann::json& j, const char* key) {
-  const auto it = j.find(key);
-  return it != j.end() && it->is_number() ? it->get<double>()
-                                          : std::numeric_limits<double>::quiet_NaN();
+std::optional<bool> acceptance(LimitDecision d, UndecidedCounts undecided) {
+  if (d == LimitDecision::kPass) return true;
+  if (d == LimitDecision::kFail) return false;
+  if (undecided == UndecidedCounts::kPass) return true;
+  if (undecided == UndecidedCounts::kFail) return false;
+  return std::nullopt;
 }
 
 }  // namespace
+
+const char* undecided_counts_name(UndecidedCounts counts) {
+  switch (counts) {
+    case UndecidedCounts::kPass:
+      return "pass";
+    case UndecidedCounts::kUndecided:
+      return "undecided";
+    case UndecidedCounts::kFail:
+      break;
+  }
+  return "fail";
+}
 
 void validate_limits(const nlohmann::json& limits) {
   if (!limits.is_object()) {
@@ -51,9 +52,9 @@ void validate_limits(const nlohmann::json& limits) {
   for (const auto& [key, value] : limits.items()) {
     bool known = false;
     std::string list;
-    for (const char* k : kLimits) {
-      known = known || key == k;
-      list += list.empty() ? k : std::string(", ") + k;
+    for (const auto& f : verdict_figures()) {
+      known = known || key == f.limit;
+      list += list.empty() ? f.limit : std::string(", ") + f.limit;
     }
     if (!known) {
       throw std::invalid_argument("limits." + quoted_value(key) + ": unknown limit (value '" +
@@ -66,53 +67,34 @@ void validate_limits(const nlohmann::json& limits) {
   }
 }
 
-LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& results) {
+LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& results,
+                          UndecidedCounts undecided) {
   LimitVerdict v;
-  Checker c(limits, v);
-  if (const auto it = results.find("static"); it != results.end() && it->is_array()) {
-    for (const auto& p : *it) {
-      const std::string what = p.value("direction", std::string()) + " " +
-                               std::to_string(p.value("load_nm", 0.0)) + " N·m";
-      c.check("static_p2p_arcmin", num(p, "p2p_arcmin"), what);
-      c.check("static_std_arcmin", num(p, "std_arcmin"), what);
-      c.check("static_abs_mean_arcmin", std::abs(num(p, "mean_arcmin")), what);
+  for (const auto& row : verdict_figures()) {
+    if (!limits.contains(row.limit)) continue;
+    const double limit = limits.at(row.limit).get<double>();
+    for (auto& found : find_figures(results, row.path)) {
+      auto figure = row.absolute ? procedures::absolute_of(found.figure) : found.figure;
+      if (!std::isfinite(figure.value)) continue;
+      const auto decision = row.minimum ? procedures::decide_lower_limit(figure, limit)
+                                        : procedures::decide_upper_limit(figure, limit);
+      const auto pass = acceptance(decision, undecided);
+      v.checks.push_back({{"limit", row.limit},
+                          {"value", limit},
+                          {"measured", figure.value},
+                          {"expanded", figure.expanded()},
+                          {"k", figure.coverage_factor},
+                          {"uncertainty_stated", found.uncertainty_stated},
+                          {"unit", row.unit},
+                          {"minimum", row.minimum},
+                          {"what", found.where},
+                          {"path", found.path},
+                          {"decision", procedures::decision_name(decision)},
+                          {"pass", pass ? nlohmann::json(*pass) : nlohmann::json()}});
+      v.decision = v.decision ? worse(*v.decision, decision) : decision;
     }
   }
-  if (const auto it = results.find("lost_motion"); it != results.end() && it->is_array()) {
-    for (const auto& lm : *it) {
-      // forward − reverse is negative under a brake (TE falls in forward travel): the limit
-      // is on its size.
-      double largest = std::numeric_limits<double>::quiet_NaN();
-      if (const auto per = lm.find("lost_motion_arcmin"); per != lm.end() && per->is_array()) {
-        for (const auto& x : *per) {
-          if (x.is_number())
-            largest = std::isnan(largest) ? std::abs(x.get<double>())
-                                          : std::max(largest, std::abs(x.get<double>()));
-        }
-      }
-      c.check("static_lost_motion_arcmin", largest,
-              "static " + std::to_string(lm.value("load_nm", 0.0)) + " N·m");
-    }
-  }
-  if (const auto it = results.find("lost_motion_fit"); it != results.end() && it->is_object()) {
-    c.check("lost_motion_arcmin", num(*it, "lost_motion_arcmin"), "lost motion");
-    if (it->contains("stiffness")) {
-      c.check("min_stiffness_nm_per_rad", num((*it)["stiffness"], "k1_nm_per_rad"), "K1", true);
-    }
-  }
-  if (const auto it = results.find("dynamic"); it != results.end() && it->is_object()) {
-    c.check("dynamic_p2p_arcsec", num(*it, "p2p_arcsec"), "dynamic TE");
-    c.check("dynamic_rms_arcsec", num(*it, "rms_arcsec"), "dynamic TE");
-  }
-  // Measured − predicted TE of the twin calibrated to this unit: what the gear model cannot
-  // explain (a damaged tooth, a loose part). The nominal twin's residual is mostly the encoders'
-  // zero offset and the unit's own TE, which the TE limits already judge.
-  if (const auto it = results.find("twin"); it != results.end() && it->is_object()) {
-    if (const auto cal = it->find("calibration"); cal != it->end() && cal->is_object()) {
-      c.check("twin_residual_rms_arcsec", num(*cal, "rms_after_arcsec"),
-              "twin residual after calibration");
-    }
-  }
+  if (v.decision) v.pass = acceptance(*v.decision, undecided);
   return v;
 }
 

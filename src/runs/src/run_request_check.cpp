@@ -125,7 +125,13 @@ ParsedRequest check_and_parse(const RunRequest& request, const bench::BenchDescr
                               RunEstimate* estimate) {
   check_run_identity(request);
   ParsedRequest parsed = parse_request(request);
-  const RunPlan plan = plan_of(parsed.procedure, bench);
+  RunPlan plan = plan_of(parsed.procedure, bench);
+  if (parsed.repeats > 1) {
+    // Every repeat commands the same values and takes as long.
+    plan.bench_time_s *= parsed.repeats;
+    plan.duration_terms =
+        std::to_string(parsed.repeats) + " repeats x (" + plan.duration_terms + ")";
+  }
   check_at_most(plan.brake_torques_nm,
                 tightest({bench.max_brake_torque_nm, bench.limits.max_brake_torque_nm}),
                 "the bench's brake limit");

@@ -6,6 +6,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "wavebench/procedures/figure_propagation.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/sample_recorder.hpp"
 
@@ -60,16 +61,19 @@ bool wait_settled(bench::Bench& bench, const StaticTeOptions& o) {
 }
 
 procedures::StaticTePoint average_window(bench::Bench& bench, SampleRecorder& recorder,
-                                         double window_s, int position) {
+                                         double window_s, int position,
+                                         const procedures::GearSense& sense) {
   recorder.start();
   bench.wait_for(window_s);
   recorder.stop();
   double th_in = 0, th_out = 0, torque = 0;
   int angles = 0, torques = 0;
+  std::vector<double> te;  // per sample: its scatter is the noise the window mean keeps
   for (const auto& s : recorder.samples()) {
     if (s.valid(storage::kThetaInValid) && s.valid(storage::kThetaOutValid)) {
       th_in += s.theta_in_rad;
       th_out += s.theta_out_rad;
+      te.push_back(sense.transmission_error(s.theta_in_rad, s.theta_out_rad));
       ++angles;
     }
     if (s.valid(storage::kTorqueValid)) {
@@ -87,6 +91,7 @@ procedures::StaticTePoint average_window(bench::Bench& bench, SampleRecorder& re
   p.theta_in_rad = th_in / angles;
   p.theta_out_rad = th_out / angles;
   p.torque_nm = torques > 0 ? torque / torques : std::numeric_limits<double>::quiet_NaN();
+  p.te_noise_rad = procedures::standard_of_window_mean(te);
   return p;
 }
 
@@ -244,7 +249,7 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
         bench.move_input_to(target,
                             o.approach_rad > 0 ? o.approach_speed_rad_s : o.move_speed_rad_s);
         if (!wait_settled(bench, o)) ++out.settle_timeouts;
-        pass.points.push_back(average_window(bench, recorder, o.window_s, k));
+        pass.points.push_back(average_window(bench, recorder, o.window_s, k, sense));
         ++done;
       }
       out.passes.push_back(std::move(pass));
@@ -252,7 +257,11 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
   }
   bench.set_brake_torque(0);
   if (progress) progress("static analysis", 1.0);
-  out.result = procedures::analyse_static_te(out.passes, sense);
+  procedures::StaticTeUncertaintyInputs uncertainty;
+  uncertainty.input_resolution_rad = bench.description().input_encoder_resolution_rad;
+  uncertainty.output_resolution_rad = bench.description().output_encoder_resolution_rad;
+  uncertainty.settle_drift_rad = o.settle.max_drift_rad;
+  out.result = procedures::analyse_static_te(out.passes, sense, uncertainty);
   return out;
 }
 

@@ -40,7 +40,8 @@ CREATE INDEX IF NOT EXISTS runs_by_status ON runs(status);
 )sql";
 
 // Added after the first indexes were written: old index files get them on open (migrate()).
-constexpr const char* kAddedColumns[][2] = {{"spec", "TEXT NOT NULL DEFAULT ''"}};
+constexpr const char* kAddedColumns[][2] = {{"spec", "TEXT NOT NULL DEFAULT ''"},
+                                            {"verdict", "TEXT NOT NULL DEFAULT ''"}};
 
 // History pages are newest first (by id) under one filter or two: each filter column leads an
 // index that ends in id, so SQLite walks it in order and stops after the page.
@@ -122,7 +123,7 @@ std::string format_utc(std::chrono::system_clock::time_point t, bool compact) {
 
 constexpr const char* kColumns =
     "id, started_at, finished_at, unit_serial, procedure, status, reason, pass, limits_json, "
-    "software_version, config_hash, spec";
+    "software_version, config_hash, spec, verdict";
 
 RunRecord read_row(const Statement& s) {
   RunRecord r;
@@ -138,6 +139,7 @@ RunRecord read_row(const Statement& s) {
   r.software_version = s.text(9);
   r.config_hash = s.text(10);
   r.spec = s.text(11);
+  r.verdict = s.text(12);
   return r;
 }
 
@@ -178,9 +180,12 @@ Filters filters_of(const RunQuery& q) {
   add("id <= ?", q.to_id);
   if (q.verdict) {
     f.where += f.where.empty() ? " WHERE " : " AND ";
-    f.where += *q.verdict == RunVerdict::kNone   ? "pass IS NULL"
-               : *q.verdict == RunVerdict::kPass ? "pass = 1"
-                                                 : "pass = 0";
+    // By the verdict shown; rows from before the verdict column have only `pass`.
+    f.where +=
+        *q.verdict == RunVerdict::kNone   ? "(pass IS NULL AND verdict = '')"
+        : *q.verdict == RunVerdict::kPass ? "(verdict = 'PASS' OR (verdict = '' AND pass = 1))"
+        : *q.verdict == RunVerdict::kFail ? "(verdict = 'FAIL' OR (verdict = '' AND pass = 0))"
+                                          : "verdict = 'UNDECIDED'";
   }
   return f;
 }
@@ -226,7 +231,9 @@ nlohmann::json to_json(const RunRecord& run) {
                       {"software_version", run.software_version},
                       {"config_hash", run.config_hash}};
   j["spec"] = run.spec.empty() ? nlohmann::json(nullptr) : nlohmann::json(run.spec);
-  j["verdict"] = run.pass ? nlohmann::json(*run.pass ? "PASS" : "FAIL") : nlohmann::json(nullptr);
+  j["verdict"] = !run.verdict.empty() ? nlohmann::json(run.verdict)
+                 : run.pass           ? nlohmann::json(*run.pass ? "PASS" : "FAIL")
+                                      : nlohmann::json(nullptr);
   j["pass"] = run.pass ? nlohmann::json(*run.pass) : nlohmann::json(nullptr);
   return j;
 }
@@ -309,7 +316,7 @@ std::string RunStore::create_run(const std::string& procedure, const std::string
     write_status_file(run);
 
     Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
-                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7, ?8)");
+                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7, ?8, '')");
     s.bind(1, run.id);
     s.bind(2, run.started_at);
     s.bind(3, run.unit_serial);
@@ -337,18 +344,20 @@ void RunStore::write_results(const std::string& id, const nlohmann::json& result
 }
 
 void RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
-                          std::optional<bool> pass) {
+                          std::optional<bool> pass, const std::string& verdict) {
   if (status != RunStatus::kComplete && status != RunStatus::kAborted) {
     throw std::invalid_argument(std::string("run store: finish status '") +
                                 run_status_name(status) + "'; expected complete or aborted");
   }
-  Statement s(
-      db_, "UPDATE runs SET status = ?2, reason = ?3, pass = ?4, finished_at = ?5 WHERE id = ?1");
+  Statement s(db_,
+              "UPDATE runs SET status = ?2, reason = ?3, pass = ?4, finished_at = ?5, verdict = ?6 "
+              "WHERE id = ?1");
   s.bind(1, id);
   s.bind(2, std::string(run_status_name(status)));
   s.bind(3, reason);
   s.bind(4, pass);
   s.bind(5, format_utc(std::chrono::system_clock::now(), false));
+  s.bind(6, verdict.empty() && pass ? std::string(*pass ? "PASS" : "FAIL") : verdict);
   s.step();
   if (sqlite3_changes(db_) != 1) {
     throw std::invalid_argument("run store: run id '" + id + "' is not indexed");

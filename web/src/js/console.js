@@ -5,6 +5,7 @@ import { api, get, post, ApiError } from './api.js';
 import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
+import { uncertain } from './dom.js';
 
 const $ = (id) => document.getElementById(id);
 let loggedIn = false;
@@ -158,9 +159,13 @@ async function showLastRun(last) {
   try {
     const detail = await get(`/api/runs/${encodeURIComponent(last.id)}`);
     const results = detail.results || {};
-    if (results.verdict === 'PASS' || results.verdict === 'FAIL') {
+    if (results.verdict === 'PASS' || results.verdict === 'FAIL' || results.verdict === 'UNDECIDED') {
+      // UNDECIDED: a limit inside a figure's uncertainty interval (ISO 14253-1), shown as such.
       verdict.textContent = results.verdict;
       verdict.className = `verdict ${results.verdict.toLowerCase()}`;
+      verdict.title = results.verdict === 'UNDECIDED'
+        ? `a limit lies inside a figure's uncertainty interval; counts as ${results.undecided_counts_as || 'fail'} for acceptance`
+        : '';
     } else if (last.status !== 'complete') {
       verdict.textContent = last.status.toUpperCase();
       verdict.className = 'verdict aborted';
@@ -184,7 +189,9 @@ function staticTable(entries) {
     const tr = document.createElement('tr');
     for (const k of keys) {
       const td = document.createElement('td');
-      td.textContent = fmt(e[k], 4);
+      // A figure with an uncertainty beside it: value ± U (k = 2), its budget on hover/click.
+      if (e.uncertainty && e.uncertainty[k]) td.append(uncertain(e, k));
+      else td.textContent = fmt(e[k], 4);
       tr.append(td);
     }
     return tr;

@@ -34,10 +34,11 @@ export function section(id, title, ...children) {
   return el('section', { id, class: 'block' }, el('h2', {}, title), ...children);
 }
 
-// The verdict of a run: the spec's verdict when the run has one, else the limit checks' pass.
+// The verdict of a run: PASS, FAIL or UNDECIDED (a limit inside a figure's uncertainty
+// interval, ISO 14253-1) as recorded; runs from before the verdict field by their pass.
 export function verdictOf(run, results) {
   const v = (run && run.verdict) ?? (results && results.verdict);
-  if (v === 'PASS' || v === 'FAIL') return v;
+  if (v === 'PASS' || v === 'FAIL' || v === 'UNDECIDED') return v;
   const pass = (results && results.pass) ?? (run && run.pass);
   if (pass === true) return 'PASS';
   if (pass === false) return 'FAIL';
@@ -48,4 +49,30 @@ export function specName(run, results) {
   const s = (run && run.spec) ?? (results && results.spec);
   if (!s) return null;
   return typeof s === 'string' ? s : s.name || s.model || null;
+}
+
+// A figure of results.json with its expanded uncertainty: "5.70 ± 0.02" and, on hover or
+// focus, its budget (the figure's `uncertainty` entry beside it: value, expanded, k, budget).
+// Click opens the budget as a small table under the value. A figure without one shows alone.
+export function uncertain(object, key, digits = 4) {
+  const value = object ? object[key] : null;
+  const u = object && object.uncertainty ? object.uncertainty[key] : null;
+  if (!u || typeof u !== 'object' || u.expanded == null) return num(value, digits);
+  const budget = Array.isArray(u.budget) ? u.budget : [];
+  const title = `U = ${num(u.expanded, 2)} (k = ${u.k ?? 2}), u_c = ${num(u.combined_standard, 2)}\n` +
+    budget.map((c) => `${c.source} (${c.type}): u = ${num(c.standard, 2)}`).join('\n');
+  const details = el('table', { class: 'budget', hidden: true },
+    el('tbody', {}, budget.map((c) => el('tr', {},
+      el('td', {}, c.source), el('td', {}, c.type), el('td', { class: 'n' }, num(c.standard, 2))))));
+  const shown = el('span', {
+    class: 'uncertain', title, tabindex: '0', role: 'button', 'aria-expanded': 'false',
+    'data-expanded': String(u.expanded),
+  }, `${num(value, digits)} ± ${num(u.expanded, 2)}`);
+  const toggle = () => {
+    details.hidden = !details.hidden;
+    shown.setAttribute('aria-expanded', String(!details.hidden));
+  };
+  shown.addEventListener('click', toggle);
+  shown.addEventListener('keydown', (e) => { if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); toggle(); } });
+  return el('span', { class: 'uncertain-figure' }, shown, details);
 }

@@ -2,7 +2,7 @@
 // GET /api/runs/{id} by the results schema (docs/formats/results.md): each section is read
 // from its own key, never guessed from its shape. Prints as an A4 test certificate.
 import { get } from './api.js';
-import { el, num, table, section, verdictOf, specName } from './dom.js';
+import { el, num, table, section, verdictOf, specName, uncertain } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
 import { twinDiagnosisSection } from './twin_diagnosis.js';
 
@@ -33,9 +33,11 @@ function header(run, results) {
         fact('Status', status, `status-${run.status}`),
         fact('Software', r.software_version || run.software_version),
         fact('Config hash', run.config_hash ? run.config_hash.slice(0, 16) : null, 'mono'),
-        fact('Gear ratio', r.gear ? num(r.gear.ratio) : null)),
-      el('div', { class: `verdict verdict-${(verdict || 'none').toLowerCase()}`, id: 'verdict' },
-        verdict || 'no verdict')));
+        fact('Gear ratio', r.gear ? num(r.gear.ratio) : null),
+        fact('Repeats', Array.isArray(r.repeats) ? `${r.repeats.length} (figures are their mean; the spread is in each ± U)` : null)),
+      el('div', { class: `verdict verdict-${(verdict || 'none').toLowerCase()}`, id: 'verdict',
+        title: verdict === 'UNDECIDED' ? `a limit lies inside a figure's uncertainty interval; counts as ${r.undecided_counts_as || 'fail'} for acceptance` : null },
+      verdict || 'no verdict')));
 }
 
 function limitChecks(results) {
@@ -45,10 +47,21 @@ function limitChecks(results) {
     table([
       { label: 'Limit', value: (c) => c.limit },
       { label: 'What', value: (c) => c.what },
-      { label: 'Measured', value: (c) => num(c.measured), class: 'n' },
-      { label: 'Limit value', value: (c) => num(c.value), class: 'n' },
-      { label: 'Result', value: (c) => el('span', { class: c.pass ? 'pass' : 'fail' }, c.pass ? 'pass' : 'FAIL') },
+      { label: 'Measured ± U (k = 2)', value: (c) => (c.expanded != null && c.uncertainty_stated !== false ? `${num(c.measured)} ± ${num(c.expanded, 2)}` : num(c.measured)), class: 'n' },
+      { label: limitValueLabel(checks), value: (c) => num(c.value), class: 'n' },
+      { label: 'Decision', value: (c) => decisionCell(c) },
     ], checks, { id: 'limit-table' }));
+}
+
+function limitValueLabel(checks) {
+  return checks.some((c) => c.minimum) ? 'Limit value (min or max)' : 'Limit value';
+}
+
+// PASS / FAIL / UNDECIDED as ISO 14253-1 decides with the guard band; older runs by pass.
+function decisionCell(c) {
+  const d = c.decision || (c.pass === true ? 'PASS' : c.pass === false ? 'FAIL' : null);
+  if (!d) return '–';
+  return el('span', { class: `decision-${d.toLowerCase()}` }, d);
 }
 
 function plotBox(idName, title) {
@@ -65,9 +78,9 @@ function staticSections(results) {
     table([
       { label: 'Direction', value: (p) => p.direction },
       { label: 'Load [N·m]', value: (p) => num(p.load_nm), class: 'n' },
-      { label: 'Mean [arcmin]', value: (p) => num(p.mean_arcmin), class: 'n' },
-      { label: 'Peak-to-peak [arcmin]', value: (p) => num(p.p2p_arcmin), class: 'n' },
-      { label: 'Std dev [arcmin]', value: (p) => num(p.std_arcmin), class: 'n' },
+      { label: 'Mean ± U [arcmin]', value: (p) => uncertain(p, 'mean_arcmin'), class: 'n' },
+      { label: 'Peak-to-peak ± U [arcmin]', value: (p) => uncertain(p, 'p2p_arcmin'), class: 'n' },
+      { label: 'Std dev ± U [arcmin]', value: (p) => uncertain(p, 'std_arcmin'), class: 'n' },
       { label: 'Positions', value: (p) => (p.points || []).length, class: 'n' },
     ], passes, { id: 'static-table' }),
     box));
@@ -86,8 +99,9 @@ function staticSections(results) {
       table([
         { label: 'Load [N·m]', value: (l) => num(l.load_nm), class: 'n' },
         { label: 'Positions', value: (l) => (l.positions || []).length, class: 'n' },
-        { label: 'Mean [arcmin]', value: (l) => num(l.mean_arcmin), class: 'n' },
-        { label: 'Max |·| [arcmin]', value: (l) => num(l.max_arcmin), class: 'n' },
+        { label: 'Mean ± U [arcmin]', value: (l) => uncertain(l, 'mean_arcmin'), class: 'n' },
+        { label: 'Max ± U [arcmin]', value: (l) => uncertain(l, 'max_arcmin'), class: 'n' },
+        { label: 'Max |·| ± U [arcmin]', value: (l) => uncertain(l, 'max_abs_arcmin'), class: 'n' },
       ], lm, { id: 'lost-motion-table' }),
       lmBox));
     const drawLm = () => makePlot(lmBox.querySelector('.plot-area'), {
@@ -106,8 +120,8 @@ function staticSections(results) {
         { label: 'Direction', value: (s) => s.direction },
         { label: 'Load [N·m]', value: (s) => num(s.load_nm), class: 'n' },
         { label: 'Reference [N·m]', value: (s) => num(s.reference_load_nm), class: 'n' },
-        { label: 'Shift [arcmin]', value: (s) => num(s.shift_arcmin), class: 'n' },
-        { label: 'Stiffness [N·m/rad]', value: (s) => num(s.stiffness_nm_per_rad), class: 'n' },
+        { label: 'Shift ± U [arcmin]', value: (s) => uncertain(s, 'shift_arcmin'), class: 'n' },
+        { label: 'Stiffness ± U [N·m/rad]', value: (s) => uncertain(s, 'stiffness_nm_per_rad'), class: 'n' },
       ], shift, { id: 'stiffness-table' })));
   }
   if (results.settle_timeouts) {
@@ -181,9 +195,9 @@ function dynamicSections(results) {
       { label: 'Quantity', value: (r) => r[0] },
       { label: 'Value', value: (r) => r[1], class: 'n' },
     ], [
-      ['Peak-to-peak [arcsec]', num(d.p2p_arcsec)],
-      ['RMS [arcsec]', num(d.rms_arcsec)],
-      ['Mean [arcsec]', num(d.mean_arcsec)],
+      ['Peak-to-peak ± U [arcsec]', uncertain(d, 'p2p_arcsec')],
+      ['RMS ± U [arcsec]', uncertain(d, 'rms_arcsec')],
+      ['Mean ± U [arcsec]', uncertain(d, 'mean_arcsec')],
       ['Input speed [rev/s]', num(d.input_speed_hz)],
       ['Sample rate [Hz]', num(d.sample_rate_hz)],
       ['Output revolutions', num(d.output_revolutions)],
@@ -203,7 +217,7 @@ function dynamicSections(results) {
       { label: 'Output order', value: (p) => num(p.order_output), class: 'n' },
       { label: 'Input order', value: (p) => (p.order_input == null ? '–' : num(p.order_input)), class: 'n' },
       { label: 'Frequency [Hz]', value: (p) => num(p.frequency_hz ?? p.folded_hz), class: 'n' },
-      { label: 'Amplitude [arcsec]', value: (p) => num(p.amplitude_arcsec), class: 'n' },
+      { label: 'Amplitude ± U [arcsec]', value: (p) => uncertain(p, 'amplitude_arcsec'), class: 'n' },
     ], [...peaks, ...aliased.map((a) => ({ name: `${a.name} (aliased from ${num(a.frequency_hz)} Hz)`, order_output: outputHz ? a.folded_hz / outputHz : null, folded_hz: a.folded_hz, amplitude_arcsec: a.amplitude_arcsec }))],
     { id: 'peaks-table' })));
   const amplitude = spec.amplitude_arcsec.map((a) => (a > 0 ? a : null));
@@ -254,12 +268,12 @@ function lostMotionFitSections(results) {
       { label: 'Quantity', value: (r) => r[0] },
       { label: 'Value', value: (r) => r[1], class: 'n' },
     ], [
-      [`Lost motion at ±${num(f.lost_motion_torque_nm, 3)} N·m [arcmin]`, num(f.lost_motion_arcmin)],
-      ['Backlash [arcmin]', num(f.backlash_arcmin)],
+      [`Lost motion at ±${num(f.lost_motion_torque_nm, 3)} N·m [arcmin]`, uncertain(f, 'lost_motion_arcmin')],
+      ['Backlash ± U [arcmin]', uncertain(f, 'backlash_arcmin')],
       ['Hysteresis loss [J]', num(f.hysteresis_loss_j)],
-      ['K1 [N·m/rad]', num(k.k1_nm_per_rad)],
-      ['K2 [N·m/rad]', num(k.k2_nm_per_rad)],
-      ['K3 [N·m/rad]', num(k.k3_nm_per_rad)],
+      ['K1 ± U [N·m/rad]', uncertain(k, 'k1_nm_per_rad')],
+      ['K2 ± U [N·m/rad]', uncertain(k, 'k2_nm_per_rad')],
+      ['K3 ± U [N·m/rad]', uncertain(k, 'k3_nm_per_rad')],
       ['T1 / T2 [N·m]', `${num(k.t1_nm)} / ${num(k.t2_nm)}`],
       ['Fit residual RMS [arcsec]', num(k.rms_residual_arcsec)],
       ['Rated torque [N·m]', num(f.rated_torque_nm)],

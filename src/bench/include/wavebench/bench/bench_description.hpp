@@ -33,6 +33,9 @@ struct BenchDescription {
   // Noise of the sensors as configured (encoder, torque): the twin's residual floor.
   double output_encoder_noise_rad = 0;
   double input_encoder_resolution_rad = 0;
+  // One step of the output encoder (2π / counts_per_turn as configured); 0 when the config
+  // leaves counts_per_turn to be read from the device. Uncertainty budgets (q/√12).
+  double output_encoder_resolution_rad = 0;
   double torque_noise_nm = 0;
   // The twin's nominal gear (its own parameters, not the simulated unit's "true" ones).
   model::GearParams twin_gear;

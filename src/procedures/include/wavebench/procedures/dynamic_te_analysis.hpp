@@ -12,6 +12,7 @@
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/procedures/uncertainty_budget.hpp"
 
 namespace wavebench::procedures {
 
@@ -35,6 +36,10 @@ struct DynamicTeOptions {
   double min_relative_amplitude = 1e-3;
   int harmonics = 3;            // named harmonics of output 1/rev and of the mesh
   double name_tolerance = 0.0;  // output orders; 0 = 1.5 bins of the order spectrum
+  // Encoder steps for the uncertainty budget (0: unknown, left out).
+  double input_resolution_rad = 0;   // θ_in
+  double output_resolution_rad = 0;  // θ_out
+  int monte_carlo_draws = 20;        // for p2p and RMS (each draw perturbs every sample)
 };
 
 struct NamedPeak {
@@ -43,6 +48,7 @@ struct NamedPeak {
   double order_input = 0;   // cycles per wave-generator revolution
   double frequency_hz = 0;  // at the run's mean speed
   double amplitude_arcsec = 0;
+  UncertainFigure amplitude;  // arcsec
 };
 
 struct AliasedComponent {
@@ -69,6 +75,10 @@ struct DynamicTeResult {
   double order_resolution = 0;  // output orders per bin
   std::vector<NamedPeak> peaks;
   std::vector<AliasedComponent> aliased;
+  // mean, p2p and RMS with their budgets (arcsec). Each sample carries the encoders'
+  // quantisation and the noise measured from the record's second differences (less the
+  // quantisation it already contains); they are independent from sample to sample.
+  UncertainFigure mean, p2p, rms;
 };
 
 // time_s from the samples' receive timestamps (strictly increasing); θ_in, θ_out unwrapped.

@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/procedures/uncertainty_budget.hpp"
 
 namespace wavebench::procedures {
 
@@ -25,6 +26,9 @@ struct StaticTePoint {  // averages over the window at one settled position
   double theta_in_rad = 0;
   double theta_out_rad = 0;
   double torque_nm = 0;
+  // Standard uncertainty of the window's mean TE from the scatter of its samples (correlation
+  // allowed for: standard_of_window_mean); 0 when not known.
+  double te_noise_rad = 0;
 };
 
 struct StaticTePass {
@@ -38,7 +42,25 @@ struct StaticTePointResult {
   double output_angle_deg = 0;  // θ2 in degrees, in [0, 360)
   double te_arcmin = 0;
   double torque_nm = 0;
+  UncertainFigure te;  // te_arcmin with its budget (arcmin)
 };
+
+// What the static figures' uncertainty is built from besides each window's own scatter
+// (bench.md §4): the encoders' steps and the settle detector's drift allowance.
+struct StaticTeUncertaintyInputs {
+  double input_resolution_rad = 0;   // one step of θ_in (the drive's encoder); 0: unknown
+  double output_resolution_rad = 0;  // one step of θ_out; 0: unknown
+  // max − min of the output angle the settle detector accepts over its window: where in that
+  // band the output came to rest is unknown, a rectangular distribution of this full width.
+  double settle_drift_rad = 0;
+};
+
+// The budget of one position's TE [arcmin]: output encoder quantisation q_out/√12, input
+// encoder quantisation (q_in/N)/√12 (θ_in enters TE divided by N), the noise left after window
+// averaging, and the settle criterion (drift/2)/√3. Terms whose input is 0 are left out.
+UncertainFigure static_point_uncertainty(double te_arcmin, double te_noise_rad,
+                                         const StaticTeUncertaintyInputs& inputs,
+                                         const GearSense& sense);
 
 struct StaticTeSummary {
   Direction direction = Direction::kForward;
@@ -48,6 +70,7 @@ struct StaticTeSummary {
   double std_arcmin = 0;  // population
   double mean_torque_nm = 0;
   std::vector<StaticTePointResult> points;
+  UncertainFigure mean, p2p, std;  // the figures above with their budgets (arcmin)
 };
 
 struct LostMotionProfile {  // forward − reverse at each position, one load
@@ -56,6 +79,9 @@ struct LostMotionProfile {  // forward − reverse at each position, one load
   std::vector<double> lost_motion_arcmin;
   double mean_arcmin = 0;
   double max_arcmin = 0;
+  double max_abs_arcmin = 0;  // the largest |forward − reverse|: the width a limit judges
+  std::vector<UncertainFigure> per_position;  // each lost_motion_arcmin with its budget
+  UncertainFigure mean, max, max_abs;
 };
 
 struct LoadShift {  // mean TE at a load minus mean TE at the lowest load, same direction
@@ -64,6 +90,8 @@ struct LoadShift {  // mean TE at a load minus mean TE at the lowest load, same 
   double reference_load_nm = 0;
   double shift_arcmin = 0;
   std::optional<double> stiffness_nm_per_rad;  // (load − reference) / shift; none if shift = 0
+  UncertainFigure shift;                       // arcmin
+  std::optional<UncertainFigure> stiffness;    // N·m/rad, from the shift's relative uncertainty
 };
 
 struct StaticTeResult {
@@ -72,13 +100,17 @@ struct StaticTeResult {
   std::vector<LoadShift> load_shifts;
 };
 
-StaticTeSummary summarise_static_pass(const StaticTePass& pass, const GearSense& sense);
+StaticTeSummary summarise_static_pass(const StaticTePass& pass, const GearSense& sense,
+                                      const StaticTeUncertaintyInputs& uncertainty = {});
 // Throws std::invalid_argument for an empty pass or a bad GearSense.
-StaticTeResult analyse_static_te(std::span<const StaticTePass> passes, const GearSense& sense);
+StaticTeResult analyse_static_te(std::span<const StaticTePass> passes, const GearSense& sense,
+                                 const StaticTeUncertaintyInputs& uncertainty = {});
 
 // results.json: {"static": [{direction, load_nm, mean_arcmin, p2p_arcmin, std_arcmin,
-// points: [{position, output_angle_deg, te_arcmin, torque_nm}]}], "lost_motion": [...],
-// "load_shift": [...]}
+// uncertainty: {mean_arcmin, p2p_arcmin, std_arcmin},
+// points: [{position, output_angle_deg, te_arcmin, torque_nm, uncertainty: {te_arcmin}}]}],
+// "lost_motion": [...], "load_shift": [...]}; every `uncertainty` entry is an UncertainFigure
+// (to_json) of the figure of the same name beside it.
 nlohmann::json to_json(const StaticTeResult& result);
 
 }  // namespace wavebench::procedures

@@ -18,6 +18,11 @@ struct UncertaintyContribution {
   std::string source;     // "encoder quantisation", "noise after averaging", ...
   char evaluation = 'B';  // 'A' statistical (repeats, scatter), 'B' otherwise (GUM 4.2, 4.3)
   double standard = 0;    // standard uncertainty, in the figure's unit, sensitivity applied
+  // True when it differs from one repeat of the procedure to the next (window noise, where the
+  // output settled): the spread between repeats already contains it, so a figure averaged over
+  // repeats replaces it by that spread (repeat_combination). False for what stays the same in
+  // every repeat (an encoder's quantisation at the same counts, a model's limits).
+  bool varies_between_repeats = false;
 };
 
 struct UncertainFigure {
@@ -25,7 +30,8 @@ struct UncertainFigure {
   std::vector<UncertaintyContribution> budget;
   double coverage_factor = kCoverageFactor;
 
-  UncertainFigure& add(std::string source, double standard, char evaluation = 'B');
+  UncertainFigure& add(std::string source, double standard, char evaluation = 'B',
+                       bool varies_between_repeats = false);
   double combined_standard() const;  // u_c: root sum of squares of the budget
   double expanded() const;           // U = k·u_c
 };
@@ -40,9 +46,15 @@ double standard_of_mean(double sample_std, int n);
 // Sample standard deviation (divides by n − 1) of values; zero for fewer than two.
 double sample_std(const std::vector<double>& values);
 
-// {"value", "expanded", "k", "combined_standard", "budget": [{"source", "type", "standard"}]},
+// {"value", "expanded", "k", "combined_standard",
+//  "budget": [{"source", "type", "standard", "varies_between_repeats"}]},
 // every number multiplied by `scale` (rad → arcmin, say) so a figure is reported in its unit.
 nlohmann::json to_json(const UncertainFigure& figure, double scale = 1.0);
+// True for an object in the to_json shape (value, expanded and a budget array).
+bool is_uncertain_figure_json(const nlohmann::json& j);
+// The figure back from to_json's shape, every number divided by `scale`. Throws
+// std::invalid_argument when `j` is not in that shape.
+UncertainFigure uncertain_figure_from_json(const nlohmann::json& j, double scale = 1.0);
 
 // ISO 14253-1 decision rules against one limit, with the expanded uncertainty as the guard
 // band: conformance is proven only when the whole interval [value − U, value + U] is on the

@@ -39,8 +39,15 @@ HtmlTable twin_table(bool with_run);  // every number of results.json "twin", by
 // `only_rms`: just the RMS figures (the session's compact view).
 void add_twin_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_cell, bool only_rms);
 
-HtmlTable limits_table();  // results.json "limit_checks": limit, value, measured, pass
+// results.json "limit_checks": limit, what, value, measured ± U, decision (PASS, FAIL,
+// UNDECIDED)
+HtmlTable limits_table();
 void add_limit_rows(HtmlTable& table, const RunFolder& run);
+
+// One figure group's uncertainty budgets: a row per contribution of every figure in the
+// `uncertainty` object of `object` (label + figure name, source, type, u, u_c, U).
+HtmlTable budget_table(const std::string& group);
+void add_budget_rows(HtmlTable& table, const nlohmann::json& object, const std::string& label);
 
 // Every number of results.json "acquisition" (samples, gaps, bus load, ...), and
 // "settle_timeouts" of a static run.

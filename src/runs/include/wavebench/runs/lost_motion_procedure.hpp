@@ -12,6 +12,7 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/procedures/lost_motion_uncertainty.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
@@ -37,6 +38,7 @@ struct LostMotionOptions {
 struct LostMotionOutcome {
   std::vector<procedures::TorqueTwistPoint> record;  // forward up the ladder, then reverse
   procedures::LostMotionResult result;
+  procedures::LostMotionUncertainty uncertainty;  // of the fit's figures
   std::vector<double> ladder_nm;
   double rated_torque_nm = 0;
   // results.json "lost_motion_fit": lost motion, backlash, hysteresis, K1/K2/K3, T1/T2 and the

@@ -1,10 +1,12 @@
 #pragma once
 // A product spec: the acceptance limits of one gear model (configs/specs/NAME.yaml), each
 // written with its unit. A run that names a spec is checked against its limits (run_limits)
-// and gets a verdict, PASS or FAIL.
+// and gets a verdict, PASS, FAIL or UNDECIDED (guard-banded by each figure's uncertainty).
 //
 //   model: CSF-25-100-2A-GR
 //   description: ...
+//   undecided: fail                  how an UNDECIDED check counts: fail (default), pass or
+//                                    undecided (no acceptance decision)
 //   limits:
 //     static_te_p2p: 1.0 arcmin      -> static_p2p_arcmin
 //     lost_motion: 1.0 arcmin        -> lost_motion_arcmin (lost-motion procedure) ...
@@ -19,6 +21,8 @@
 #include <optional>
 #include <string>
 #include <vector>
+
+#include "wavebench/runs/run_limits.hpp"
 
 namespace wavebench::runs {
 
@@ -36,10 +40,12 @@ struct ProductSpec {
   std::vector<SpecLimit> limits;
   // Lost motion is measured at ± this fraction of rated torque (lost_motion_at).
   std::optional<double> lost_motion_fraction;
+  // How a check whose limit lies inside the figure's uncertainty interval counts.
+  UndecidedCounts undecided = UndecidedCounts::kFail;
 
   // {run_limits key: value} as check_limits reads them.
   nlohmann::json run_limits() const;
-  // {"name", "model", "description", "lost_motion_at_percent" (or null),
+  // {"name", "model", "description", "lost_motion_at_percent" (or null), "undecided",
   //  "limits": [{"key", "limit", "value", "unit"}, ...]}
   nlohmann::json to_json() const;
 };

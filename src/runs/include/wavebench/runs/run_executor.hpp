@@ -20,7 +20,7 @@ namespace wavebench::runs {
 
 // results.json "schema": its format and major version (docs/formats/results.schema.json).
 // Adding a key keeps it; removing, renaming or changing the meaning of one bumps the number.
-inline constexpr const char* kResultsSchema = "wavebench.results/1";
+inline constexpr const char* kResultsSchema = "wavebench.results/2";
 
 struct RunRequest {
   std::string procedure;  // "static", "dynamic" or "lost-motion"

@@ -33,14 +33,17 @@ struct RunRecord {
   std::string procedure;
   RunStatus status = RunStatus::kRunning;
   std::string reason;
-  std::optional<bool> pass;  // the verdict: PASS, FAIL, none (no limit applied, not complete)
+  std::optional<bool> pass;  // acceptance: passed, failed, none (no limit applied, not complete)
+  // "PASS", "FAIL", "UNDECIDED" (a limit inside a figure's uncertainty interval; `pass` then
+  // says how the spec counts it), or empty (none, or a row from before this column).
+  std::string verdict;
   std::string limits_json = "{}";
   std::string spec;  // the product spec the run was accepted against; empty: none
   std::string software_version;
   std::string config_hash;  // SHA-256 of the config text, hex
 };
 
-enum class RunVerdict { kPass, kFail, kNone };
+enum class RunVerdict { kPass, kFail, kNone, kUndecided };
 
 struct RunQuery {
   std::optional<std::string> procedure;
@@ -80,8 +83,9 @@ class RunStore {
   // status is kComplete or kAborted; throws std::invalid_argument for an unknown id. The
   // index is updated first; status.json is rewritten where it still can be (a full disk does
   // not make this throw once the index holds the status).
+  // `verdict` is "PASS", "FAIL" or "UNDECIDED"; empty: from `pass` (PASS, FAIL or none).
   void finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
-                  std::optional<bool> pass = std::nullopt);
+                  std::optional<bool> pass = std::nullopt, const std::string& verdict = {});
   // Marks every run left `running` as `incomplete`; returns their ids.
   std::vector<std::string> recover();
 

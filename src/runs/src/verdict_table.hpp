@@ -1,0 +1,46 @@
+#pragma once
+// The one table of what a verdict judges (issue #11): each product spec key, the limit key a
+// request's "limits" uses for it, its unit, and where results.json holds the figure. A new
+// procedure's figures are judged by a new row here; nothing else in the verdict changes.
+//
+// A path is keys separated by dots; `name[*]` takes every element of an array (one check per
+// element). The figure at the end of a path is found, first match wins:
+//   1. beside it, in its object's `uncertainty` object under the same key (static, dynamic,
+//      lost-motion: "static[*].p2p_arcmin" reads static[i].uncertainty.p2p_arcmin);
+//   2. the key itself, when it holds an UncertainFigure object (to_json: value, expanded, ...);
+//   3. the key itself as a plain number: a figure with no stated uncertainty (U = 0).
+
+#include <nlohmann/json.hpp>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "wavebench/procedures/uncertainty_budget.hpp"
+#include "wavebench/strict_yaml/units.hpp"
+
+namespace wavebench::runs {
+
+struct VerdictFigure {
+  const char* spec_key;  // configs/specs/*.yaml ("static_te_p2p")
+  const char* limit;     // run_limits key ("static_p2p_arcmin")
+  strict_yaml::Dimension dimension;
+  const char* unit;  // of the limit key and of the figure in results.json
+  double per_unit;   // SI per `unit`
+  const char* path;  // in results.json
+  bool minimum;      // a lower limit (stiffness); otherwise an upper one
+  bool absolute;     // judged on the figure's magnitude (a mean TE of either sign)
+};
+
+std::span<const VerdictFigure> verdict_figures();
+
+struct FoundFigure {
+  std::string where;  // "static[1] reverse 60 N·m"
+  std::string path;   // the concrete path: "static[1].p2p_arcmin"
+  procedures::UncertainFigure figure;
+  bool uncertainty_stated = false;  // false: a plain number, U = 0
+};
+
+// Every figure `path` reaches in `results` (none when a key on the way is missing).
+std::vector<FoundFigure> find_figures(const nlohmann::json& results, const std::string& path);
+
+}  // namespace wavebench::runs
