@@ -11,6 +11,7 @@
 
 #include "commands.hpp"
 #include "wavebench/daemon/client_commands.hpp"
+#include "wavebench/runs/procedure_catalogue.hpp"
 
 namespace wavebench::cli {
 namespace {
@@ -69,9 +70,9 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   };
   auto start_args = std::make_shared<StartArgs>();
   auto* start = daemon_subcommand(app, "start", "start a run on the daemon's bench", options);
-  start->add_option("procedure", start_args->procedure, "static, dynamic or lost-motion")
+  start->add_option("procedure", start_args->procedure, "static, dynamic, lost-motion or torsional")
       ->required()
-      ->check(CLI::IsMember({"static", "dynamic", "lost-motion"}));
+      ->check(CLI::IsMember(runs::procedure_names()));
   start->add_option("--option", start_args->options,
                     "procedure option KEY=VALUE (repeatable; VALUE as JSON where it parses, e.g. "
                     "positions=4 loads_nm=[0,60])");

@@ -1,8 +1,8 @@
-// `wavebench run static|dynamic|lost-motion --bench sim|CONFIG [--out DIR] ...`: one procedure
-// without a daemon. Builds the bench (the in-process simulated bench for "sim"), records the
-// run in the store under --out, prints the summary table and where results and report are.
-// A bad option or config, or a request the bench or the disk cannot take: a message naming
-// the key, the value and what was expected, exit 2, nothing written.
+// `wavebench run static|dynamic|lost-motion|torsional --bench sim|CONFIG [--out DIR] ...`: one
+// procedure without a daemon. Builds the bench (the in-process simulated bench for "sim"), records
+// the run in the store under --out, prints the summary table and where results and report are. A
+// bad option or config, or a request the bench or the disk cannot take: a message naming the key,
+// the value and what was expected, exit 2, nothing written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -18,6 +18,7 @@
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/report/run_report.hpp"
+#include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/procedure_options_file.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/runs/run_request_check.hpp"
@@ -221,10 +222,10 @@ int run_procedure(const RunArgs& a) {
 void register_run_commands(CLI::App& app, ExitStatus& status) {
   auto args = std::make_shared<RunArgs>();
   auto* cmd = app.add_subcommand(
-      "run", "Run one bench procedure without a daemon: static, dynamic or lost-motion");
-  cmd->add_option("procedure", args->procedure, "static | dynamic | lost-motion")
+      "run", "Run one bench procedure without a daemon: static, dynamic, lost-motion or torsional");
+  cmd->add_option("procedure", args->procedure, "static | dynamic | lost-motion | torsional")
       ->required()
-      ->check(CLI::IsMember({"static", "dynamic", "lost-motion"}));
+      ->check(CLI::IsMember(runs::procedure_names()));
   cmd->add_option("--bench", args->bench,
                   "'sim' (the in-process simulated bench) or a bench config file")
       ->capture_default_str();

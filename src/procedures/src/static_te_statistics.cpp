@@ -68,7 +68,9 @@ StaticTeResult analyse_static_te(std::span<const StaticTePass> passes, const Gea
       for (const auto& p : fwd.points) {
         const auto it = reverse_te.find(p.position);
         if (it == reverse_te.end()) continue;
-        const double v = p.te_arcmin - it->second;
+        // The width between the directions, a positive number (bench.md §4): under a brake
+        // forward TE falls below reverse TE, unloaded the backlash may leave it either side.
+        const double v = std::abs(it->second - p.te_arcmin);
         lm.positions.push_back(p.position);
         lm.lost_motion_arcmin.push_back(v);
         sum += v;

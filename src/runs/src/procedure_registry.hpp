@@ -13,10 +13,12 @@
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/runs/torsional_procedure.hpp"
 
 namespace wavebench::runs {
 
-using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure>;
+using AnyProcedure =
+    std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure, TorsionalProcedure>;
 
 struct ParsedProcedure {
   AnyProcedure procedure;
@@ -35,7 +37,7 @@ struct ProcedureEntry {
 std::span<const ProcedureEntry> procedure_entries();
 // Null when no procedure has that name.
 const ProcedureEntry* find_procedure(std::string_view name);
-// "static, dynamic or lost-motion": for the refusal of an unknown name.
+// "static, dynamic, lost-motion or torsional": for the refusal of an unknown name.
 std::string procedure_name_list();
 
 }  // namespace wavebench::runs

@@ -80,8 +80,8 @@ LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& re
   }
   if (const auto it = results.find("lost_motion"); it != results.end() && it->is_array()) {
     for (const auto& lm : *it) {
-      // forward − reverse is negative under a brake (TE falls in forward travel): the limit
-      // is on its size.
+      // A width, positive; results written before it was (forward − reverse, negative under a
+      // brake) are judged by their size all the same.
       double largest = std::numeric_limits<double>::quiet_NaN();
       if (const auto per = lm.find("lost_motion_arcmin"); per != lm.end() && per->is_array()) {
         for (const auto& x : *per) {

@@ -34,6 +34,10 @@ struct BenchDescription {
   double output_encoder_noise_rad = 0;
   double input_encoder_resolution_rad = 0;
   double torque_noise_nm = 0;
+  // Quantisation steps for uncertainty budgets (0: not known from the config): the output
+  // encoder's (2π / counts per turn) and the torque sensor's (its scale per raw unit).
+  double output_encoder_resolution_rad = 0;
+  double torque_resolution_nm = 0;
   // The twin's nominal gear (its own parameters, not the simulated unit's "true" ones).
   model::GearParams twin_gear;
   std::string twin_case_path;  // where twin_gear came from (copied into run folders)

@@ -3,7 +3,7 @@
 // that applies to the procedure's results is checked; none applying means no verdict.
 //
 //   static_p2p_arcmin, static_std_arcmin, static_abs_mean_arcmin  each static pass
-//   static_lost_motion_arcmin     the largest |forward − reverse| at any position and load
+//   static_lost_motion_arcmin     the largest |reverse − forward| at any position and load
 //   lost_motion_arcmin            lost motion at ±x % of rated (lost-motion procedure)
 //   min_stiffness_nm_per_rad      K1 of the lost-motion fit
 //   dynamic_p2p_arcsec, dynamic_rms_arcsec
