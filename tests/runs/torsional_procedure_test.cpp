@@ -18,6 +18,7 @@ TEST(TorsionalProcedure, LoopOnThePlantBenchGivesTheUnitsStiffnessAndBacklash) {
   TorsionalOptions o;
   o.twist_step_rad = 4e-5;  // coarser than the default: a quicker unit test
   const auto out = TorsionalProcedure(o).run(bench);
+  bench.wait_for(0.01);
   EXPECT_EQ(bench.brake_setting(), 0);         // released at the end, the gear unloaded
   EXPECT_DOUBLE_EQ(out.torques.t_max_nm, 80);  // rated fits under 95 N·m / 1.1
   EXPECT_EQ(out.slipped_points, 0);

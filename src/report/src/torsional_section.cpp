@@ -80,10 +80,10 @@ void add_torsional_rows(HtmlTable& table, const RunFolder& run, const RunCell& r
   const auto at = number(*t, "lost_motion_torque_nm");
   const auto t_max = number(*t, "t_max_nm");
   const json* slip = figure_at(*t, "slip");
-  const auto slipped = slip ? number(*slip, "slipped_points") : std::nullopt;
+  const double slipped = slip ? number(*slip, "slipped_points").value_or(-1) : -1;
   row.push_back({at ? fixed(*at, 2) : "\u2013", {}, false});
   row.push_back({t_max ? fixed(*t_max, 1) : "\u2013", {}, false});
-  row.push_back({slipped ? fixed(*slipped, 0) : "\u2013", {}, slipped && *slipped > 0});
+  row.push_back({slipped >= 0 ? fixed(slipped, 0) : "\u2013", {}, slipped > 0});
   table.rows.push_back(std::move(row));
 }
 
