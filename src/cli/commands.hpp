@@ -14,7 +14,7 @@ void register_sim_commands(CLI::App& app, ExitStatus& status);       // sim (twi
 void register_can_commands(CLI::App& app, ExitStatus& status);       // can scan|nmt|sdo-*|dump
 void register_brake_commands(CLI::App& app, ExitStatus& status);     // brake, sim-brake
 void register_simbench_commands(CLI::App& app, ExitStatus& status);  // simbench
-void register_run_commands(CLI::App& app, ExitStatus& status);  // run static|dynamic|lost-motion
+void register_run_commands(CLI::App& app, ExitStatus& status);       // run PROCEDURE
 void register_daemon_client_commands(CLI::App& app,
                                      ExitStatus& status);          // status|start|abort|runs|export
 void register_report_commands(CLI::App& app, ExitStatus& status);  // report RUN_DIR

@@ -1,8 +1,8 @@
-// `wavebench run static|dynamic|lost-motion --bench sim|CONFIG [--out DIR] ...`: one procedure
-// without a daemon. Builds the bench (the in-process simulated bench for "sim"), records the
-// run in the store under --out, prints the summary table and where results and report are.
-// A bad option or config, or a request the bench or the disk cannot take: a message naming
-// the key, the value and what was expected, exit 2, nothing written.
+// `wavebench run static|dynamic|lost-motion|torsional --bench sim|CONFIG [--out DIR] ...`: one
+// procedure without a daemon. Builds the bench (the in-process simulated bench for "sim"), records
+// the run in the store under --out, prints the summary table and where results and report are. A
+// bad option or config, or a request the bench or the disk cannot take: a message naming the key,
+// the value and what was expected, exit 2, nothing written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>

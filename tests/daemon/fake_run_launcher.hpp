@@ -69,9 +69,9 @@ class FakeRunLauncher : public RunLauncher {
              std::size_t /*extra_channels*/,
              const std::filesystem::path& /*runs_root*/) const override {
     if (request.procedure != "static" && request.procedure != "dynamic" &&
-        request.procedure != "lost-motion") {
+        request.procedure != "lost-motion" && request.procedure != "torsional") {
       throw std::invalid_argument("procedure: got '" + request.procedure +
-                                  "', expected static, dynamic or lost-motion");
+                                  "', expected static, dynamic, lost-motion or torsional");
     }
     if (request.options.contains("seconds")) {
       const auto& v = request.options["seconds"];

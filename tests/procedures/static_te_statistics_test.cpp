@@ -80,6 +80,17 @@ TEST(StaticTe, LostMotionPerPositionAndStiffnessFromTheLoadShift) {
     EXPECT_NEAR(lm.mean_arcmin, 0.3, 1e-9);
   }
   ASSERT_EQ(r.load_shifts.size(), 2u);
+  // Under a brake the directions part the other way (forward TE below reverse TE): the
+  // lost motion is still the positive width between them.
+  const std::vector<StaticTePass> braked = {
+      make_pass(Direction::kForward, 60, -1.6 - 5.2, sense),
+      make_pass(Direction::kReverse, 60, -1.9 + 5.2, sense),
+  };
+  const auto b = analyse_static_te(braked, sense);
+  ASSERT_EQ(b.lost_motion.size(), 1u);
+  for (double v : b.lost_motion[0].lost_motion_arcmin) EXPECT_NEAR(v, 10.1, 1e-9);
+  EXPECT_NEAR(b.lost_motion[0].mean_arcmin, 10.1, 1e-9);
+  EXPECT_NEAR(b.lost_motion[0].max_arcmin, 10.1, 1e-9);
   for (const auto& s : r.load_shifts) {
     EXPECT_EQ(s.load_nm, 60);
     EXPECT_NEAR(s.shift_arcmin, shift, 1e-9);

@@ -7,6 +7,7 @@
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/procedure_options_file.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/runs/torsional_procedure.hpp"
 
 namespace wavebench::runs {
 namespace {
@@ -22,6 +23,8 @@ TEST(ProcedureDefaults, TheShippedYamlFilesAreTheCompiledDefaults) {
   EXPECT_EQ(
       LostMotionOptions::from_json(load_procedure_options(kDir / "lost-motion.yaml")).to_json(),
       LostMotionOptions{}.to_json());
+  EXPECT_EQ(TorsionalOptions::from_json(load_procedure_options(kDir / "torsional.yaml")).to_json(),
+            TorsionalOptions{}.to_json());
 }
 
 TEST(ProcedureDefaults, YamlScalarsBecomeNumbersBooleansAndStrings) {

@@ -14,6 +14,7 @@
 #include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/run_request_check.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/runs/torsional_procedure.hpp"
 
 namespace wavebench::runs {
 namespace {
@@ -104,21 +105,23 @@ TEST_P(ProcedureSchema, AValueOutsideTheDescribedRangeIsRefusedNamingTheKey) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Procedures, ProcedureSchema,
-                         ::testing::Values("static", "dynamic", "lost-motion"),
+                         ::testing::Values("static", "dynamic", "lost-motion", "torsional"),
                          [](const auto& param_info) {
                            return param_info.param == "lost-motion" ? std::string("lost_motion")
                                                                     : param_info.param;
                          });
 
 TEST(ProcedureRegistry, NamesTheProceduresAndRefusesAnUnknownOneAsBefore) {
-  EXPECT_EQ(procedure_names(), (std::vector<std::string>{"static", "dynamic", "lost-motion"}));
+  EXPECT_EQ(procedure_names(),
+            (std::vector<std::string>{"static", "dynamic", "lost-motion", "torsional"}));
   RunRequest request;
   request.procedure = "statik";
   try {
     check_run_request(request, bench::BenchDescription{}, 0, RunBudget{});
     FAIL() << "accepted";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "procedure: got 'statik', expected static, dynamic or lost-motion");
+    EXPECT_STREQ(e.what(),
+                 "procedure: got 'statik', expected static, dynamic, lost-motion or torsional");
   }
 }
 

@@ -54,6 +54,9 @@ def main():
                               "--limit", "lost_motion_arcmin=100"]),
         "static, 2 repeats": (sim, ["static", "--positions", "4", "--loads", "0", "--window", "0.1",
                                    "--no-twin", "--option", "repeats=2"]),
+        "torsional, coarse steps, with the report": (sim, ["torsional", "--option", "twist_step_rad=0.0001",
+                                                           "--option", "window_s=0.05", "--no-twin",
+                                                           "--report"]),
     }
     failed = False
     produced = {}
@@ -90,6 +93,7 @@ def main():
         "dynamic, short, with the twin and a spec": ["dynamic", "twin", "limit_checks", "spec", "verdict"],
         "lost motion": ["lost_motion_fit", "limit_checks"],
         "static, 2 repeats": ["repeats", "static"],
+        "torsional, coarse steps, with the report": ["torsional", "report"],
     }
     for name, keys in expected_sections.items():
         missing = [k for k in keys if name in produced and k not in produced[name]]
@@ -163,6 +167,16 @@ def main():
             failed = True
         else:
             print("ok   accepted: an aborted lost-motion run")
+
+    # The torsional figures are uncertain figures; a plain number in their place is refused.
+    if "torsional, coarse steps, with the report" in produced:
+        b = copy.deepcopy(produced["torsional, coarse steps, with the report"])
+        b["torsional"]["lost_motion_arcmin"] = 0.5
+        if validator.is_valid(b):
+            print("FAIL the schema accepts a torsional lost motion without its uncertainty")
+            failed = True
+        else:
+            print("ok   refused: a torsional lost motion without its uncertainty")
 
     if failed:
         sys.exit(1)

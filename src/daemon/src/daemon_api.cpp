@@ -452,7 +452,7 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
     return api_error(400, "bad request",
                      "procedure: got " +
                          (procedure == body.end() ? std::string("nothing") : procedure->dump()) +
-                         ", expected \"static\", \"dynamic\" or \"lost-motion\"");
+                         ", expected \"static\", \"dynamic\", \"lost-motion\" or \"torsional\"");
   }
   run.procedure = procedure->get<std::string>();
   if (const auto options = body.find("options"); options != body.end()) {

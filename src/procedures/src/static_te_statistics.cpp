@@ -103,10 +103,12 @@ StaticTeResult analyse_static_te(std::span<const StaticTePass> passes, const Gea
       for (const auto& p : fwd.points) {
         const auto it = reverse_te.find(p.position);
         if (it == reverse_te.end()) continue;
-        const double v = p.te_arcmin - it->second->te_arcmin;
+        // The width between the directions, a positive number (bench.md §4): under a brake
+        // forward TE falls below reverse TE, unloaded the backlash may leave it either side.
+        const double v = std::abs(p.te_arcmin - it->second->te_arcmin);
         lm.positions.push_back(p.position);
         lm.lost_motion_arcmin.push_back(v);
-        lm.per_position.push_back(difference_of(p.te, it->second->te));
+        lm.per_position.push_back(absolute_of(difference_of(p.te, it->second->te)));
         sum += v;
         lm.max_arcmin = std::max(lm.max_arcmin, v);
         lm.max_abs_arcmin = std::max(lm.max_abs_arcmin, std::abs(v));

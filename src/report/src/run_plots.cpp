@@ -303,14 +303,15 @@ std::optional<TorqueTwistCurve> torque_twist_from_samples(
         !s.valid(storage::kTorqueValid)) {
       continue;
     }
-    c.twist_arcmin.push_back(sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
+    // Twist θ1/N − θ2 = −TE, as the fits' points give it.
+    c.twist_arcmin.push_back(-sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
                              procedures::kArcminPerRad);
     c.torque_nm.push_back(s.torque_nm);
     // A brake only resists motion, so the torque's sign is the direction of travel.
     c.travel.push_back(s.torque_nm < 0 ? -1 : 1);
   }
   if (c.torque_nm.size() < 8) return std::nullopt;
-  c.twist_label = "twist (TE at the output, every sample) [arcmin]";
+  c.twist_label = "twist (-TE at the output, every sample) [arcmin]";
   c.from_samples = true;
   return c;
 }

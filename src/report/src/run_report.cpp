@@ -6,6 +6,7 @@
 #include "wavebench/analysis/amplitude_spectrum.hpp"
 #include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_tables.hpp"
+#include "wavebench/report/torsional_section.hpp"
 #include "wavebench/report/twin_diagnosis_section.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 
@@ -212,6 +213,25 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     }
   }
 
+  // Torsional stiffness, locked output.
+  if (const json* torsional = torsional_section(run.results)) {
+    page.heading("Torsional stiffness (locked output)");
+    HtmlTable t = torsional_table(false);
+    add_torsional_rows(t, run, std::nullopt);
+    add_table(page, t);
+    if (auto fig = torsional_loop_figure(*torsional)) {
+      report.plots.push_back(write_plot(*fig, out, "torsional.png", 800));
+      page.image("torsional.png", "Twist against torque, the locked-output loop");
+    }
+    if (const auto reason = torsional->find("t_max_reason");
+        reason != torsional->end() && reason->is_string()) {
+      page.paragraph("T_max: " + reason->get<std::string>());
+    }
+    HtmlTable budget = torsional_budget_table();
+    add_torsional_budget_rows(budget, run);
+    add_table(page, budget);
+  }
+
   // The twin.
   HtmlTable twin = twin_table(false);
   add_twin_rows(twin, run, std::nullopt, false);
@@ -266,7 +286,8 @@ std::vector<HtmlTable> session_tables(const std::vector<SessionRun>& runs,
   HtmlTable overview = runs_table();
   HtmlTable st = static_te_table(true), lm = static_lost_motion_table(true),
             shift = load_shift_table(true), dyn = dynamic_te_table(true),
-            stiff = stiffness_table(true), twin = twin_table(true);
+            stiff = stiffness_table(true), torsional = torsional_table(true),
+            twin = twin_table(true);
   overview.caption = "Runs";
   twin.caption = "The twin: residual RMS";
   for (const auto& r : runs) {
@@ -283,10 +304,11 @@ std::vector<HtmlTable> session_tables(const std::vector<SessionRun>& runs,
     add_load_shift_rows(shift, run, plain);
     add_dynamic_te_rows(dyn, run, plain);
     add_stiffness_rows(stiff, run, plain);
+    add_torsional_rows(torsional, run, plain);
     add_twin_rows(twin, run, plain, true);
   }
   std::vector<HtmlTable> out;
-  for (auto* t : {&overview, &st, &lm, &shift, &dyn, &stiff, &twin}) {
+  for (auto* t : {&overview, &st, &lm, &shift, &dyn, &stiff, &torsional, &twin}) {
     if (!t->rows.empty()) out.push_back(std::move(*t));
   }
   return out;

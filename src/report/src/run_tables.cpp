@@ -132,7 +132,7 @@ void add_static_te_rows(HtmlTable& table, const RunFolder& run, const RunCell& r
 HtmlTable static_lost_motion_table(bool with_run) {
   auto t = with_header(with_run,
                        {"load [N*m]", "mean lost motion [arcmin]", "max lost motion [arcmin]"});
-  t.caption = "Lost motion at each position (forward - reverse)";
+  t.caption = "Lost motion at each position (|reverse - forward|, a width)";
   return t;
 }
 

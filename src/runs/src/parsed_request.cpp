@@ -17,13 +17,14 @@ constexpr const char* kCalibrateKey = "calibrate_twin";
 constexpr const char* kLostMotionFractionKey = "lost_motion_fraction";
 
 // The spec's lost motion is measured at its fraction of rated torque: the run measures there.
-void apply_lost_motion_fraction(const ProductSpec& spec, nlohmann::json& options) {
+void apply_lost_motion_fraction(const ProductSpec& spec, const std::string& procedure,
+                                nlohmann::json& options) {
   const double fraction = *spec.lost_motion_fraction;
   const auto it = options.find(kLostMotionFractionKey);
   if (it == options.end()) {
     options[kLostMotionFractionKey] = fraction;
   } else if (!it->is_number() || std::abs(it->get<double>() - fraction) > 1e-12) {
-    throw std::invalid_argument(std::string("lost-motion.") + kLostMotionFractionKey + ": got '" +
+    throw std::invalid_argument(procedure + "." + kLostMotionFractionKey + ": got '" +
                                 quoted_value(*it) + "', expected " +
                                 nlohmann::json(fraction).dump() + " (spec " + spec.name +
                                 " measures lost motion at that fraction of rated torque)");
@@ -60,8 +61,10 @@ ParsedRequest parse_request(const RunRequest& request) {
     throw std::invalid_argument("procedure: got '" + quoted_value(request.procedure) +
                                 "', expected " + procedure_name_list());
   }
-  if (request.spec && request.spec->lost_motion_fraction && request.procedure == "lost-motion") {
-    apply_lost_motion_fraction(*request.spec, options);
+  // Both lost-motion methods (bench.md §4) read lost motion at the spec's fraction.
+  if (request.spec && request.spec->lost_motion_fraction &&
+      (request.procedure == "lost-motion" || request.procedure == "torsional")) {
+    apply_lost_motion_fraction(*request.spec, request.procedure, options);
   }
   auto parsed = parse_procedure(*entry, options);
   return {std::move(parsed.procedure), std::move(parsed.options), limits, calibrate,

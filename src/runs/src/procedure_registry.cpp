@@ -14,7 +14,7 @@ ParsedProcedure parse_as(const nlohmann::json& options) {
   return {Procedure(o), o.to_json(), 1};
 }
 
-const std::array<ProcedureEntry, 3> kProcedures{{
+const std::array<ProcedureEntry, 4> kProcedures{{
     {"static", "Static TE",
      "Transmission error at equally spaced output positions, settled, forward and reverse, at "
      "each brake load (bench.md §4)",
@@ -27,6 +27,11 @@ const std::array<ProcedureEntry, 3> kProcedures{{
      "Torque–twist over a brake torque ladder in both directions: lost motion at ± a fraction "
      "of rated torque and the stiffnesses K1, K2, K3",
      &LostMotionOptions::schema, &parse_as<LostMotionOptions, LostMotionProcedure>},
+    {"torsional", "Torsional stiffness (locked output)",
+     "The catalogues' torque–twist loop with the brake holding the output: first loading to "
+     "+T_max, unloading to −T_max, back to zero; hysteresis loss, lost motion, backlash, "
+     "K1/K2/K3 and T1/T2, each with its uncertainty",
+     &TorsionalOptions::schema, &parse_as<TorsionalOptions, TorsionalProcedure>},
 }};
 
 }  // namespace

@@ -13,10 +13,12 @@
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/runs/torsional_procedure.hpp"
 
 namespace wavebench::runs {
 
-using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure>;
+using AnyProcedure =
+    std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure, TorsionalProcedure>;
 
 struct ParsedProcedure {
   AnyProcedure procedure;
@@ -48,7 +50,7 @@ std::vector<OptionSpec> procedure_options(const ProcedureEntry& entry);
 // entry.parse() with `repeats` taken off first (integer 1..kMaxRepeats, default 1). Throws
 // std::invalid_argument naming the key, the value and what was expected.
 ParsedProcedure parse_procedure(const ProcedureEntry& entry, const nlohmann::json& options);
-// "static, dynamic or lost-motion": for the refusal of an unknown name.
+// "static, dynamic, lost-motion or torsional": for the refusal of an unknown name.
 std::string procedure_name_list();
 
 }  // namespace wavebench::runs

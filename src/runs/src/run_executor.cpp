@@ -52,6 +52,8 @@ ProcedureResult run_once(AnyProcedure& procedure, bench::Bench& bench,
     r.json["dynamic"] = d->run(bench, progress).to_json();
   } else if (auto* l = std::get_if<LostMotionProcedure>(&procedure)) {
     r.json["lost_motion_fit"] = l->run(bench, progress).to_json();
+  } else if (auto* t = std::get_if<TorsionalProcedure>(&procedure)) {
+    r.json["torsional"] = t->run(bench, progress).to_json();
   }
   return r;
 }

@@ -13,7 +13,7 @@ using strict_yaml::Dimension;
 constexpr double kArcmin = std::numbers::pi / 10800;
 constexpr double kArcsec = kArcmin / 60;
 
-constexpr std::array<VerdictFigure, 9> kFigures{{
+constexpr std::array<VerdictFigure, 12> kFigures{{
     {"static_te_p2p", "static_p2p_arcmin", Dimension::kAngle, "arcmin", kArcmin,
      "static[*].p2p_arcmin", false, false},
     {"static_te_std", "static_std_arcmin", Dimension::kAngle, "arcmin", kArcmin,
@@ -30,6 +30,13 @@ constexpr std::array<VerdictFigure, 9> kFigures{{
      "dynamic.p2p_arcsec", false, false},
     {"dynamic_te_rms", "dynamic_rms_arcsec", Dimension::kAngle, "arcsec", kArcsec,
      "dynamic.rms_arcsec", false, false},
+    // The locked-output torsional test (the catalogues' definitions, bench.md §4).
+    {"hysteresis_loss", "hysteresis_loss_arcmin", Dimension::kAngle, "arcmin", kArcmin,
+     "torsional.hysteresis_loss_arcmin", false, false},
+    {"locked_lost_motion", "locked_lost_motion_arcmin", Dimension::kAngle, "arcmin", kArcmin,
+     "torsional.lost_motion_arcmin", false, false},
+    {"min_locked_k1", "min_locked_stiffness_nm_per_rad", Dimension::kStiffness, "N*m/rad", 1,
+     "torsional.stiffness.k1_nm_per_rad", true, false},
     // The calibrated twin's residual: a model-fit figure, without a stated uncertainty.
     {"twin_residual_rms", "twin_residual_rms_arcsec", Dimension::kAngle, "arcsec", kArcsec,
      "twin.calibration.rms_after_arcsec", false, false},

@@ -67,7 +67,7 @@ async function main_() {
   const lostMotion = runs.filter((r) => (Array.isArray(r.results.lost_motion) && r.results.lost_motion.length) || r.results.lost_motion_fit);
   const perPosition = lostMotion.filter((r) => Array.isArray(r.results.lost_motion));
   if (perPosition.length) {
-    const { s, area } = plotSection('lost-motion', 'Lost motion (static test)', 'Forward − reverse TE per output position, per load');
+    const { s, area } = plotSection('lost-motion', 'Lost motion (static test)', '|Reverse − forward| TE per output position, per load (a width)');
     main.append(s);
     const pairs = [];
     const series = [];

@@ -94,7 +94,7 @@ function staticSections(results) {
   const lm = results.lost_motion;
   const positions = results.options && results.options.positions;
   if (Array.isArray(lm) && lm.length) {
-    const lmBox = plotBox('lost-motion-plot', 'Lost motion (forward − reverse TE) per position');
+    const lmBox = plotBox('lost-motion-plot', 'Lost motion (|reverse − forward| TE, a width) per position');
     out.push(section('lost-motion', 'Lost motion (static test)',
       table([
         { label: 'Load [N·m]', value: (l) => num(l.load_nm), class: 'n' },
@@ -308,6 +308,99 @@ function lostMotionFitSections(results) {
   return [s];
 }
 
+// An uncertain figure (results.json: value, expanded = U at k = 2, budget) as "value ± U".
+function plusMinus(f, digits = 4) {
+  if (!f || f.value == null) return '–';
+  return f.expanded == null ? num(f.value, digits) : `${num(f.value, digits)} ± ${num(f.expanded, 2)}`;
+}
+
+// The locked-output torsional test: its figures with their uncertainty and budget, and the loop
+// as the catalogues draw it (torque on x, torsion angle on y).
+function torsionalSections(results) {
+  const t = results.torsional;
+  if (!t) return [];
+  const k = t.stiffness || {};
+  const figures = [
+    ['Hysteresis loss [arcmin]', t.hysteresis_loss_arcmin],
+    [`Lost motion at ±${num(t.lost_motion_torque_nm, 3)} N·m [arcmin]`, t.lost_motion_arcmin],
+    ['Backlash [arcmin]', t.backlash_arcmin],
+    ['K1 [N·m/rad]', k.k1_nm_per_rad],
+    ['K2 [N·m/rad]', k.k2_nm_per_rad],
+    ['K3 [N·m/rad]', k.k3_nm_per_rad],
+    ['T1 [N·m]', k.t1_nm],
+    ['T2 [N·m]', k.t2_nm],
+  ];
+  const box = plotBox('torsional-plot', 'Twist against torque, output locked: first loading, unloading, reloading, and the fitted K1/K2/K3');
+  const facts = [
+    ['T_max [N·m]', `${num(t.t_max_nm)} (${t.t_max_reason || '–'})`],
+    ['Hold torque [N·m]', num(t.hold_torque_nm)],
+    ['Points used / voided (slip)', `${t.points_used ?? '–'} / ${t.points_voided ?? '–'}`],
+    ['Largest output motion [arcmin]', num(t.slip && t.slip.max_output_moved_arcmin)],
+    ['Fit residual RMS [arcsec]', num(k.rms_residual_arcsec)],
+  ];
+  const budget = [];
+  for (const [label, f] of figures) {
+    for (const c of (f && f.budget) || []) budget.push({ figure: label, ...c });
+  }
+  const s = section('torsional', 'Torsional stiffness (locked output)',
+    table([
+      { label: 'Figure', value: (r) => r[0] },
+      { label: 'Value ± U (k = 2)', value: (r) => plusMinus(r[1]), class: 'n' },
+    ], figures, { id: 'torsional-table' }),
+    box,
+    table([
+      { label: 'Quantity', value: (r) => r[0] },
+      { label: 'Value', value: (r) => r[1], class: 'n' },
+    ], facts, { id: 'torsional-facts' }),
+    el('details', {}, el('summary', {}, 'Uncertainty budget'),
+      table([
+        { label: 'Figure', value: (r) => r.figure },
+        { label: 'Contribution', value: (r) => r.source },
+        { label: 'Type', value: (r) => r.type },
+        { label: 'Standard uncertainty', value: (r) => num(r.standard, 3), class: 'n' },
+      ], budget, { id: 'torsional-budget' })));
+  const points = t.points || [];
+  s.draws = [() => {
+    const pairs = [];
+    const series = [];
+    [['first_loading', 'first loading'], ['unloading', 'unloading'], ['reloading', 'reloading']].forEach(([key, label], i) => {
+      const b = points.filter((p) => p.branch === key && !p.voided);
+      if (!b.length) return;
+      pairs.push([b.map((p) => p.torque_nm), b.map((p) => p.twist_arcmin)]);
+      series.push({ label, color: palette[i], points: true, line: true, spanGaps: true });
+    });
+    const voided = points.filter((p) => p.voided);
+    if (voided.length) {
+      pairs.push([voided.map((p) => p.torque_nm), voided.map((p) => p.twist_arcmin)]);
+      series.push({ label: 'voided (slip)', color: palette[6], points: true });
+    }
+    const mean = t.mean_curve || { torque_nm: [], twist_arcmin: [] };
+    const fit = {
+      t1_nm: k.t1_nm && k.t1_nm.value, t2_nm: k.t2_nm && k.t2_nm.value,
+      k1_nm_per_rad: k.k1_nm_per_rad && k.k1_nm_per_rad.value,
+      k2_nm_per_rad: k.k2_nm_per_rad && k.k2_nm_per_rad.value,
+      k3_nm_per_rad: k.k3_nm_per_rad && k.k3_nm_per_rad.value,
+    };
+    if (fit.k1_nm_per_rad > 0 && fit.k2_nm_per_rad > 0 && fit.k3_nm_per_rad > 0) {
+      // Each side of zero at the mean curve's own offset (median), as the report draws it.
+      [1, -1].forEach((side) => {
+        const idx = mean.torque_nm.map((_, i) => i).filter((i) => side * mean.torque_nm[i] > 0);
+        if (!idx.length) return;
+        const offsets = idx.map((i) => mean.twist_arcmin[i] - twistAt(fit, mean.torque_nm[i]) * ARCMIN_PER_RAD).sort((a, b) => a - b);
+        const o = offsets[Math.floor(offsets.length / 2)];
+        const end = Math.max(...idx.map((i) => Math.abs(mean.torque_nm[i])));
+        const ts = Array.from({ length: 101 }, (_, j) => (side * end * j) / 100);
+        pairs.push([ts, ts.map((x) => o + twistAt(fit, x) * ARCMIN_PER_RAD)]);
+        series.push({ label: side > 0 ? 'fit K1/K2/K3, T > 0' : 'fit K1/K2/K3, T < 0', color: palette[3], width: 2, spanGaps: true });
+      });
+    }
+    makePlot(box.querySelector('.plot-area'), {
+      xLabel: 'torque [N·m]', yLabel: 'twist θ_in/N − θ_out [arcmin]', series, data: joinSeries(pairs), height: 360,
+    });
+  }];
+  return [s];
+}
+
 function twinSections(run, results) {
   const t = results.twin;
   if (!t) return [];
@@ -410,6 +503,7 @@ async function main_() {
   add(staticSections(results));
   add(dynamicSections(results));
   add(lostMotionFitSections(results));
+  add(torsionalSections(results));
   if (detail.samples_file_bytes > 0) {
     add(traceSection(run, run.procedure === 'dynamic'
       ? 'Dynamic TE against time (the whole record; zoom in for every sample)'

@@ -8,6 +8,7 @@ const FALLBACK = [
   { name: 'static', title: 'Static TE', options: [] },
   { name: 'dynamic', title: 'Dynamic TE', options: [] },
   { name: 'lost-motion', title: 'Lost motion', options: [] },
+  { name: 'torsional', title: 'Torsional stiffness (locked output)', options: [] },
 ];
 
 function el(tag, attrs = {}, text) {

@@ -37,6 +37,10 @@ struct BenchDescription {
   // leaves counts_per_turn to be read from the device. Uncertainty budgets (q/√12).
   double output_encoder_resolution_rad = 0;
   double torque_noise_nm = 0;
+  // Quantisation steps for uncertainty budgets (0: not known from the config): the output
+  // encoder's (2π / counts per turn) and the torque sensor's (its scale per raw unit).
+  double output_encoder_resolution_rad = 0;
+  double torque_resolution_nm = 0;
   // The twin's nominal gear (its own parameters, not the simulated unit's "true" ones).
   model::GearParams twin_gear;
   std::string twin_case_path;  // where twin_gear came from (copied into run folders)

@@ -47,6 +47,27 @@ struct LostMotionResult {
   ThreeSegmentStiffness stiffness;
 };
 
+// The three-segment model above fitted to a record: per-branch offsets and compliances by
+// linear least squares for given breakpoints, the breakpoints searched (a grid over
+// 0 < t1 < t2 < max |T|, then three refinements around the best pair).
+struct ThreeSegmentFit {
+  ThreeSegmentStiffness stiffness;
+  double forward_offset_rad = 0;  // o_f: the branch of travel > 0
+  double reverse_offset_rad = 0;  // o_r
+  double sse_rad2 = 0;
+  int points = 0;
+  // Standard uncertainties from the residual (GUM Type A): of the compliances 1/K1..1/K3,
+  // s²·(AᵀA)⁻¹ at the breakpoints found with s² = SSE/(n − 5); of each breakpoint, the half
+  // width of the range where the sum of squares stays within SSE + s² with the other held
+  // (the profile's Δχ² = 1 interval).
+  double compliance_standard[3] = {0, 0, 0};  // rad/(N·m)
+  double t1_standard_nm = 0, t2_standard_nm = 0;
+};
+
+// Throws std::invalid_argument when a branch has fewer than two points or the record fewer
+// than 7, or no breakpoint pair fits below the largest torque.
+ThreeSegmentFit fit_three_segment(std::span<const TorqueTwistPoint> record, int breakpoint_grid);
+
 // Throws std::invalid_argument when a branch is missing or has fewer than two torques, or the
 // record cannot support three segments (fewer than 7 points).
 LostMotionResult analyse_lost_motion(std::span<const TorqueTwistPoint> record,

@@ -1,6 +1,6 @@
 #pragma once
 // Static TE (bench.md §4): per direction and load, the TE at each settled position, its mean,
-// peak-to-peak and standard deviation; the lost motion at each position (forward − reverse);
+// peak-to-peak and standard deviation; the lost motion at each position (|reverse − forward|);
 // the shift of mean TE under load and the stiffness it implies (K ≈ T / shift).
 //
 // Standard deviation is the population one (divide by n): the positions sample one whole
@@ -73,7 +73,7 @@ struct StaticTeSummary {
   UncertainFigure mean, p2p, std;  // the figures above with their budgets (arcmin)
 };
 
-struct LostMotionProfile {  // forward − reverse at each position, one load
+struct LostMotionProfile {  // |reverse − forward| at each position, one load
   double load_nm = 0;
   std::vector<int> positions;
   std::vector<double> lost_motion_arcmin;

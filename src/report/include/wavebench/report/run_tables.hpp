@@ -18,7 +18,7 @@ void add_run_row(HtmlTable& table, const RunFolder& run, const HtmlCell& run_cel
 HtmlTable static_te_table(bool with_run);  // direction, load, mean/p2p/std arcmin
 void add_static_te_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_cell);
 
-HtmlTable static_lost_motion_table(bool with_run);  // forward − reverse per load
+HtmlTable static_lost_motion_table(bool with_run);  // |reverse − forward| per load
 void add_static_lost_motion_rows(HtmlTable& table, const RunFolder& run, const RunCell& run_cell);
 
 HtmlTable load_shift_table(bool with_run);  // mean TE shift under load and implied K
