@@ -39,7 +39,7 @@ struct RunArgs {
   std::optional<double> revolutions;
   std::optional<double> load;
   std::vector<double> torques;
-  std::optional<int> repeats;  // any procedure
+  std::optional<int> repeats;        // any procedure
   std::string options_file;          // YAML procedure options (configs/procedures/*.yaml)
   std::vector<std::string> options;  // KEY=VALUE
   std::vector<std::string> limits;   // KEY=VALUE

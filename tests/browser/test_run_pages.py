@@ -154,7 +154,7 @@ class RunPagesTest(unittest.TestCase):
         verdict = self.browser.find_element(By.ID, "verdict")
         self.assertTrue(verdict.is_displayed())
         self.assertGreater(verdict.size["height"], 40)  # shown large
-        rows = self.browser.find_elements(By.CSS_SELECTOR, "#static-table tbody tr")
+        rows = self.browser.find_elements(By.CSS_SELECTOR, "#static-table > tbody > tr")
         self.assertEqual(len(rows), 2)  # forward and reverse at 0 N*m
         self.assertEqual({r.find_elements(By.TAG_NAME, "td")[0].text for r in rows},
                          {"forward", "reverse"})

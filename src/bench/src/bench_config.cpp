@@ -423,9 +423,6 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
     if (c.encoder.counts_per_turn)
       d.output_encoder_resolution_rad = 2 * M_PI / *c.encoder.counts_per_turn;
     d.torque_noise_nm = c.torque_sensor.noise_nm;
-    if (c.encoder.counts_per_turn) {
-      d.output_encoder_resolution_rad = 2 * M_PI / *c.encoder.counts_per_turn;
-    }
     // An integer process value steps by its scale; a float one has no step worth budgeting.
     const auto type = c.torque_sensor.sensor.type;
     if (type != canopen::ValueType::f32 && type != canopen::ValueType::f64) {

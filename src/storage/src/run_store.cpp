@@ -315,8 +315,9 @@ std::string RunStore::create_run(const std::string& procedure, const std::string
     write_file_atomically(p.config, config_text);
     write_status_file(run);
 
-    Statement s(db_, std::string("INSERT INTO runs (") + kColumns +
-                         ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7, ?8, '')");
+    Statement s(db_,
+                std::string("INSERT INTO runs (") + kColumns +
+                    ") VALUES (?1, ?2, NULL, ?3, ?4, 'running', '', NULL, ?5, ?6, ?7, ?8, '')");
     s.bind(1, run.id);
     s.bind(2, run.started_at);
     s.bind(3, run.unit_serial);

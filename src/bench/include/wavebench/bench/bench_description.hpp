@@ -37,9 +37,8 @@ struct BenchDescription {
   // leaves counts_per_turn to be read from the device. Uncertainty budgets (q/√12).
   double output_encoder_resolution_rad = 0;
   double torque_noise_nm = 0;
-  // Quantisation steps for uncertainty budgets (0: not known from the config): the output
-  // encoder's (2π / counts per turn) and the torque sensor's (its scale per raw unit).
-  double output_encoder_resolution_rad = 0;
+  // The torque sensor's quantisation step (its scale per raw unit; 0: not known from the
+  // config), for uncertainty budgets.
   double torque_resolution_nm = 0;
   // The twin's nominal gear (its own parameters, not the simulated unit's "true" ones).
   model::GearParams twin_gear;

@@ -69,8 +69,8 @@ struct TwinRunReport {
   std::uint64_t samples_predicted = 0;
   TwinLag lag;
   std::int64_t solver_steps = 0;
-  double thread_cpu_s = 0;  // CPU time of the twin's thread
-  std::string error;        // the model failed on the twin's thread (then it stops predicting)
+  double thread_cpu_s = 0;     // CPU time of the twin's thread
+  std::string error;           // the model failed on the twin's thread (then it stops predicting)
   DiagnosticReport diagnosis;  // empty when options.diagnose is off
   bool diagnosed = false;
 };

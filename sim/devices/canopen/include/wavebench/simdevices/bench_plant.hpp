@@ -15,16 +15,16 @@ namespace wavebench::simdevices {
 
 struct PlantState {
   double t = 0;
-  double theta_in = 0;      // theta1 [rad]
-  double omega_in = 0;      // [rad/s]
-  double theta_out = 0;     // theta2 [rad] in the model's convention
-  double omega_out = 0;     // [rad/s]
-  double twist = 0;         // Delta = theta1/N - theta2 - e [rad]
-  double te = 0;            // theta2 - theta1/N [rad]
-  double gear_torque = 0;   // T_g at the output [N*m]
-  double motor_torque = 0;  // T_m [N*m]
-  double brake_torque = 0;  // torque the brake exerts on the output [N*m] (opposes motion)
-  double shaft_torque = 0;  // torque through the sensor into brake and load [N*m]
+  double theta_in = 0;           // theta1 [rad]
+  double omega_in = 0;           // [rad/s]
+  double theta_out = 0;          // theta2 [rad] in the model's convention
+  double omega_out = 0;          // [rad/s]
+  double twist = 0;              // Delta = theta1/N - theta2 - e [rad]
+  double te = 0;                 // theta2 - theta1/N [rad]
+  double gear_torque = 0;        // T_g at the output [N*m]
+  double motor_torque = 0;       // T_m [N*m]
+  double brake_torque = 0;       // torque the brake exerts on the output [N*m] (opposes motion)
+  double shaft_torque = 0;       // torque through the sensor into brake and load [N*m]
   double output_travel_rad = 0;  // output angle turned either way since start (defect onsets)
 };
 
