@@ -104,6 +104,30 @@ TEST(UncertainVerdict, TheTableReadsAFigureObjectOrAPlainNumberToo) {
   }
 }
 
+TEST(UncertainVerdict, TheTorsionalTestsFiguresAreJudgedAsFigureObjects) {
+  // The torsional procedure writes each figure as an uncertain figure object at its key.
+  const nlohmann::json results = {{"torsional",
+                                   {{"hysteresis_loss_arcmin", figure_json(0.354, 0.009)},
+                                    {"lost_motion_arcmin", figure_json(1.081, 0.011)},
+                                    {"stiffness", {{"k1_nm_per_rad", figure_json(28400, 280)}}}}}};
+  const auto v = check_limits({{"hysteresis_loss_arcmin", 0.36},
+                               {"locked_lost_motion_arcmin", 1.2},
+                               {"min_locked_stiffness_nm_per_rad", 2.5e4}},
+                              results);
+  ASSERT_EQ(v.checks.size(), 3u);
+  ASSERT_TRUE(v.decision.has_value());
+  // 0.354 + 2·0.009 > 0.36 > 0.354 − 2·0.009: the hysteresis limit lies inside U.
+  EXPECT_EQ(*v.decision, procedures::LimitDecision::kUndecided);
+  for (const auto& c : v.checks) {
+    EXPECT_TRUE(c["uncertainty_stated"].get<bool>()) << c.dump();
+    if (c["path"] == "torsional.hysteresis_loss_arcmin") {
+      EXPECT_EQ(c["decision"], "UNDECIDED");
+    } else {
+      EXPECT_EQ(c["decision"], "PASS") << c.dump();
+    }
+  }
+}
+
 TEST(UncertainVerdict, TheSpecChoosesHowUndecidedCountsAndRefusesOtherWords) {
   EXPECT_EQ(
       parse_product_spec("model: X\nlimits:\n  static_te_p2p: 6 arcmin\n", "x", "x.yaml").undecided,
