@@ -18,28 +18,6 @@ struct Overloaded : Ts... {
 template <class... Ts>
 Overloaded(Ts...) -> Overloaded<Ts...>;
 
-const char* family_name(model::TeFamily f) {
-  switch (f) {
-    case model::TeFamily::kWaveGenerator:
-      return "wave_generator";
-    case model::TeFamily::kHousing:
-      return "housing";
-    case model::TeFamily::kTangentialOutput:
-      return "tangential_output";
-    case model::TeFamily::kTangentialFixed:
-      return "tangential_fixed";
-    case model::TeFamily::kOutputAssembly:
-      return "output_assembly";
-    case model::TeFamily::kToothMesh:
-      return "tooth_mesh";
-    case model::TeFamily::kOutputOnceRev:
-      return "output_once_rev";
-    case model::TeFamily::kCustom:
-      break;
-  }
-  return "custom";
-}
-
 // A plain number is SI to the loader; 17 digits make the round trip exact.
 std::string number(double v) {
   char buf[40];
@@ -103,7 +81,7 @@ void te_section(YAML::Emitter& out, const model::GearParams& g) {
   for (const auto& t : g.te_terms) {
     out << YAML::Flow << YAML::BeginMap;
     out << YAML::Key << "source" << YAML::Value << t.source;
-    out << YAML::Key << "family" << YAML::Value << family_name(t.family);
+    out << YAML::Key << "family" << YAML::Value << te_family_name(t.family);
     if (t.family == model::TeFamily::kCustom) {
       key_number(out, "order_input", t.order_input);
       key_number(out, "order_output", t.order_output);
@@ -326,6 +304,28 @@ std::string write_twin_case_yaml(const TwinCase& twin, const std::string& commen
       << "# Values are SI (rad, s, N*m, kg*m^2, N*m/rad); configs/twin/README.md has the schema.\n";
   text << out.c_str() << "\n";
   return text.str();
+}
+
+const char* te_family_name(model::TeFamily f) {
+  switch (f) {
+    case model::TeFamily::kWaveGenerator:
+      return "wave_generator";
+    case model::TeFamily::kHousing:
+      return "housing";
+    case model::TeFamily::kTangentialOutput:
+      return "tangential_output";
+    case model::TeFamily::kTangentialFixed:
+      return "tangential_fixed";
+    case model::TeFamily::kOutputAssembly:
+      return "output_assembly";
+    case model::TeFamily::kToothMesh:
+      return "tooth_mesh";
+    case model::TeFamily::kOutputOnceRev:
+      return "output_once_rev";
+    case model::TeFamily::kCustom:
+      break;
+  }
+  return "custom";
 }
 
 }  // namespace wavebench::config

@@ -7,6 +7,7 @@
 
 #include "wavebench/analysis/order_spectrum.hpp"
 #include "wavebench/analysis/peak_attribution.hpp"
+#include "wavebench/config/twin_case_writer.hpp"
 #include "wavebench/twin/twin_calibrator.hpp"
 
 namespace wavebench::twin {
@@ -56,25 +57,7 @@ bool steady(const std::vector<TwinPoint>& window, double start, double span) {
 }  // namespace
 
 std::string te_family_name(model::TeFamily family) {
-  switch (family) {
-    case model::TeFamily::kWaveGenerator:
-      return "wave_generator";
-    case model::TeFamily::kHousing:
-      return "housing";
-    case model::TeFamily::kTangentialOutput:
-      return "tangential_output";
-    case model::TeFamily::kTangentialFixed:
-      return "tangential_fixed";
-    case model::TeFamily::kOutputAssembly:
-      return "output_assembly";
-    case model::TeFamily::kToothMesh:
-      return "tooth_mesh";
-    case model::TeFamily::kOutputOnceRev:
-      return "output_once_rev";
-    case model::TeFamily::kCustom:
-      break;
-  }
-  return "custom";
+  return config::te_family_name(family);
 }
 
 std::string suspect_for(const RankedSource& first) {

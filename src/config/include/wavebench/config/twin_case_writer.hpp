@@ -11,6 +11,9 @@ namespace wavebench::config {
 
 // `comment` (may be multi-line) goes at the top of the file as YAML comments. The analysis
 // section is not written (the loader's defaults apply).
+// The config's name of a TE family (`family:` in a twin case): "tangential_output", ...
+const char* te_family_name(model::TeFamily family);
+
 std::string write_twin_case_yaml(const TwinCase& twin, const std::string& comment = "");
 
 }  // namespace wavebench::config
