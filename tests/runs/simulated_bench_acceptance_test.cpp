@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "gear_truth.hpp"
+#include "simulated_bench_fixture.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/runs/dynamic_te_procedure.hpp"
@@ -25,15 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using testing::kArcminPerRadTruth;
 
-struct Sim {
-  Sim() : bench(bench::make_simulated_bench(bench::default_simulated_bench_config())) {
-    access = bench::simulated_access(*bench);
-    bench->connect();
-  }
-  ~Sim() { bench->disconnect(); }
-  std::unique_ptr<bench::Bench> bench;
-  bench::SimulatedBenchAccess* access = nullptr;
-};
+using testing::Sim;
 
 using testing::Stats;
 using testing::stats;

@@ -17,6 +17,7 @@
 #include <cstdio>
 
 #include "gear_truth.hpp"
+#include "simulated_bench_fixture.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/runs/torsional_procedure.hpp"
@@ -26,15 +27,7 @@ namespace {
 
 using testing::kArcminPerRadTruth;
 
-struct Sim {
-  Sim() : bench(bench::make_simulated_bench(bench::default_simulated_bench_config())) {
-    access = bench::simulated_access(*bench);
-    bench->connect();
-  }
-  ~Sim() { bench->disconnect(); }
-  std::unique_ptr<bench::Bench> bench;
-  bench::SimulatedBenchAccess* access = nullptr;
-};
+using testing::Sim;
 
 // d(twist measured)/d(twist elastic) − 1 at input angle θ1 (output still): the TE terms that
 // turn with the input add N·de/dθ1 of measured twist per unit of elastic twist.
