@@ -146,6 +146,25 @@ TEST(TwinDiagnosisAcceptance, ACircularSplineToothAppearingMidRunIsFlaggedWithin
   EXPECT_EQ(f.at("sources")[0].at("family"), "tangential_fixed");
 }
 
+TEST(TwinDiagnosisAcceptance, ARisingOncePerRevolutionIsFlaggedAtOrderOneOnceItLeavesItsBand) {
+  // A worn output bearing: the 1/rev grows by 0.3 arcmin per output revolution from the
+  // second on. The twin's own 1/rev is 2.5 arcmin, so the band at order 1 is a quarter of it
+  // (relative_band): the growth must leave it within a few revolutions, not at once.
+  DefectiveUnit unit(
+      "defects:\n  - {kind: rising_once_per_rev, growth_per_rev: \"0.3 arcmin\", phase: \"30 "
+      "deg\", onset: \"2 rev\"}\n");
+  const auto run = dynamic_run(unit, 8);
+  const auto& flags = run.diagnosis.at("flags");
+  ASSERT_FALSE(flags.empty()) << run.diagnosis.dump(1);
+  const auto& f = flags.front();
+  EXPECT_EQ(f.at("order").get<int>(), 1);
+  EXPECT_GE(f.at("first_revolution").get<int>(), 3);  // not before it has grown
+  EXPECT_LE(f.at("first_revolution").get<int>(), 7);
+  bool once_rev = false;
+  for (const auto& source : f.at("sources")) once_rev |= source.at("family") == "output_once_rev";
+  EXPECT_TRUE(once_rev) << f.dump();
+}
+
 TEST(TwinDiagnosisAcceptance, AHealthyUnitRunsTwentyRevolutionsWithoutAFlag) {
   DefectiveUnit unit("");
   const auto run = dynamic_run(unit, 20);

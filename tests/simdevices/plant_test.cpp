@@ -2,6 +2,7 @@
 // catalogue three-segment stiffness and backlash, brake holding and slipping, dead zone.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 
@@ -34,6 +35,20 @@ TEST(BenchPlant, TeExcitationIsTheSumOfTheTermsOverBothAngles) {
       EXPECT_DOUBLE_EQ(plant.te_excitation(th1, th2), e);
     }
   }
+}
+
+TEST(BenchPlant, StartsAtRestWithTheMeshUnloadedDespiteATeOffset) {
+  // default_bench_gear() carries a 1.75 arcmin constant TE term: at theta2 = 0 the spring
+  // would be preloaded by it and the output would ring when the bench starts.
+  SimulatedBenchPlant plant(default_bench_gear());
+  EXPECT_NEAR(plant.state().theta_out + plant.te_excitation(0, plant.state().theta_out), 0, 1e-12);
+  double peak_speed = 0;
+  for (int i = 0; i < 200; ++i) {
+    plant.step(1e-3);
+    peak_speed = std::max(peak_speed, std::abs(plant.state().omega_out));
+    EXPECT_EQ(plant.state().gear_torque, 0.0) << "at step " << i;
+  }
+  EXPECT_EQ(peak_speed, 0.0);
 }
 
 TEST(BenchPlant, CatalogueTwistAtSixtyNewtonMetres) {

@@ -22,6 +22,7 @@
 #include "wavebench/twin/twin_beside_bench.hpp"
 #include "wavebench/twin/twin_calibrator.hpp"
 #include "wavebench/twin/twin_overlay.hpp"
+#include "wavebench/twin/unit_twin_store.hpp"
 #else
 #define WAVEBENCH_RUN_TWIN 0
 #endif
@@ -178,9 +179,35 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"spec", request.spec ? spec_json(*request.spec) : nlohmann::json()}};
   ProcedureResult procedure_result;
   nlohmann::json twin_json;
+#if WAVEBENCH_RUN_TWIN
+  std::optional<twin::TwinCalibration> cal;  // the twin fitted to this run alone
+#endif
   std::optional<storage::SampleLogWriter> writer;
 #if WAVEBENCH_RUN_TWIN
   std::unique_ptr<twin::TwinBesideBench> twin_beside;
+  // The twin beside the bench: the unit's own when it has one (calibrated over its earlier
+  // runs, unit_twin_store.hpp), else the bench's nominal twin case.
+  model::GearParams twin_gear = description.twin_gear;
+  twin::TwinSolverOptions twin_solver;
+  nlohmann::json twin_source = {{"kind", "nominal"}, {"case", description.twin_case_path}};
+  if (request.twin && !unit_serial.empty()) {
+    try {
+      if (auto unit = twin::load_unit_twin(store.root(), unit_serial, description.sense.ratio)) {
+        twin_gear = std::move(unit->twin.gear);
+        twin_solver = unit->solver;
+        nlohmann::json from = nlohmann::json::array();
+        for (const auto& r : unit->provenance.value("runs", nlohmann::json::array())) {
+          from.push_back(
+              {{"run_id", r.value("run_id", "")}, {"procedure", r.value("procedure", "")}});
+        }
+        twin_source = {{"kind", "unit"},
+                       {"case", std::filesystem::relative(unit->case_file, store.root()).string()},
+                       {"calibrated_from", from}};
+      }
+    } catch (const std::exception& e) {
+      results["warnings"].push_back(std::string(e.what()) + "; the nominal twin case is used");
+    }
+  }
 #endif
   const auto extra_channels = bench.extra_channels();
   if (!extra_channels.empty()) {
@@ -207,8 +234,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
             request.on_diagnosis(twin::to_json(flag));
           };
         }
-        twin_beside = std::make_unique<twin::TwinBesideBench>(description.twin_gear,
-                                                              description.sense, twin_options);
+        twin_options.solver = twin_solver;
+        twin_beside =
+            std::make_unique<twin::TwinBesideBench>(twin_gear, description.sense, twin_options);
       } catch (const std::exception& e) {
         twin_json = {{"error", std::string("twin not started: ") + e.what()}};
       }
@@ -263,22 +291,33 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       try {
         const auto& live = twin_beside->finish();
         twin_json = twin::to_json(live);
+        twin_json["gear"] = twin_source;
         twin::write_twin_csv(paths.dir / "twin.csv", live.points);
         analysis::SpectrumAnalyser analyser;
         if (!twin_json.contains("residual")) {
           twin_json["residual"] = procedures::to_json(
               twin::twin_overlay_residual(twin::twin_overlay(live.points), analyser));
         }
+        // The prediction against what the sensors allow (the residual's white part).
+        const double floor = twin::estimate_te_noise_floor_arcsec(live.points);
+        twin_json["residual"]["noise_floor_arcsec"] = floor;
+        if (floor > 0 && twin_json["residual"].contains("rms_arcsec")) {
+          twin_json["residual"]["rms_over_noise_floor"] =
+              twin_json["residual"]["rms_arcsec"].get<double>() / floor;
+        }
         if (parsed.calibrate_twin && outcome.status == storage::RunStatus::kComplete) {
           report_progress("twin calibration", 0.94);
           const auto samples = storage::read_sample_log(paths.samples).samples;
-          const auto cal = twin::calibrate_twin(
-              description.twin_gear, description.sense, samples, analyser,
-              procedure_result.static_result ? &*procedure_result.static_result : nullptr);
-          twin::write_calibrated_twin_config(paths.dir / "twin-calibrated.yaml", cal);
+          twin::TwinCalibrationOptions calibration_options;
+          calibration_options.solver = twin_solver;
+          cal = twin::calibrate_twin(
+              twin_gear, description.sense, samples, analyser,
+              procedure_result.static_result ? &*procedure_result.static_result : nullptr,
+              calibration_options);
+          twin::write_calibrated_twin_config(paths.dir / "twin-calibrated.yaml", *cal);
           // The calibrated twin's replay, for the run page's before/after plot.
-          twin::write_twin_csv(paths.dir / "twin-calibrated.csv", cal.replay_after);
-          twin_json["calibration"] = twin::to_json(cal);
+          twin::write_twin_csv(paths.dir / "twin-calibrated.csv", cal->replay_after);
+          twin_json["calibration"] = twin::to_json(*cal);
           twin_json["calibration"]["config"] = "twin-calibrated.yaml";
         }
       } catch (const std::exception& e) {
@@ -313,6 +352,30 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       // next start of a store marks it incomplete; the caller still learns the status here.
       results["index_error"] = std::string("run index not updated: ") + e.what();
     }
+
+#if WAVEBENCH_RUN_TWIN
+    // The unit's twin anew, over this run and the unit's newest run of every other procedure:
+    // the twin beside the bench on the unit's next run.
+    if (twin_beside && parsed.calibrate_twin && !unit_serial.empty() &&
+        outcome.status == storage::RunStatus::kComplete && !results.contains("index_error")) {
+      report_progress("unit twin", 0.95);
+      try {
+        const twin::CalibratedRun this_run{outcome.run_id, request.procedure,
+                                           cal ? &*cal : nullptr};
+        const auto update = twin::update_unit_twin(store, unit_serial, description.twin_gear,
+                                                   description.sense, description.name, this_run);
+        if (update) {
+          auto unit_json = update->provenance;
+          unit_json.erase("te_terms");
+          unit_json["case"] = std::filesystem::relative(update->case_file, store.root()).string();
+          results["twin"]["unit_twin"] = unit_json;
+        }
+      } catch (const std::exception& e) {
+        results["twin"]["unit_twin"] = {{"error", e.what()}};
+      }
+      write_results_if_possible(store, outcome.run_id, results);
+    }
+#endif
 
 #if WAVEBENCH_RUN_REPORT
     if (request.report && !results.contains("results_error")) {

@@ -1,8 +1,11 @@
 #include "wavebench/twin/twin_calibrator.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include "wavebench/config/twin_case_writer.hpp"
@@ -137,7 +140,227 @@ Replay replay(const model::GearParams& params, const procedures::GearSense& sens
   return r;
 }
 
+std::vector<Replay> replay_all(const model::GearParams& params, const procedures::GearSense& sense,
+                               std::span<const std::span<const storage::SyncSample>> runs,
+                               analysis::SpectrumAnalyser& analyser,
+                               const TwinSolverOptions& solver) {
+  std::vector<Replay> out;
+  out.reserve(runs.size());
+  for (const auto& samples : runs) out.push_back(replay(params, sense, samples, analyser, solver));
+  return out;
+}
+
+// RMS of the residual over every run's samples together (each run weighs what it measured).
+double pooled_rms(const std::vector<Replay>& replays) {
+  double squares = 0, n = 0;
+  for (const auto& r : replays) {
+    const auto m = static_cast<double>(r.residual.residual_arcsec.size());
+    squares += r.residual.rms_arcsec * r.residual.rms_arcsec * m;
+    n += m;
+  }
+  return n > 0 ? std::sqrt(squares / n) : std::numeric_limits<double>::infinity();
+}
+
+// Signed torque of the quasi-static spring at twist x.
+double spring_torque(const model::ElasticStiffness& law, double x) {
+  return std::copysign(law.torque_unmodulated(std::abs(x)), x);
+}
+
+// The three segments' compliance columns of a catalogue curve: the twist is
+// c1·min(|T|, T1) + c2·clamp(|T| − T1, 0, T2 − T1) + c3·max(|T| − T2, 0) (signed), linear in the
+// compliances c = 1/K with T1 and T2 held. `covered` says whether each segment holds enough
+// rows (min_fraction of them well inside it) for its compliance to be told from the others'.
+struct SegmentColumns {
+  std::array<std::vector<double>, 3> columns;
+  std::array<bool, 3> covered{};
+};
+SegmentColumns segment_columns(const model::ThreeSegmentStiffness& k,
+                               const std::vector<double>& torque, double min_fraction) {
+  SegmentColumns out;
+  std::array<std::size_t, 3> inside{};
+  for (const double t : torque) {
+    const double a = std::abs(t);
+    out.columns[0].push_back(std::copysign(std::min(a, k.t1), t));
+    out.columns[1].push_back(std::copysign(std::clamp(a - k.t1, 0.0, k.t2 - k.t1), t));
+    out.columns[2].push_back(std::copysign(std::max(a - k.t2, 0.0), t));
+    if (a > 0.1 * k.t1 && a < 0.9 * k.t1) ++inside[0];
+    if (a > k.t1 + 0.1 * (k.t2 - k.t1) && a < k.t2 - 0.1 * (k.t2 - k.t1)) ++inside[1];
+    if (a > 1.1 * k.t2) ++inside[2];
+  }
+  const double need = min_fraction * static_cast<double>(torque.size());
+  for (std::size_t i = 0; i < 3; ++i) out.covered[i] = static_cast<double>(inside[i]) >= need;
+  return out;
+}
+
+void note_fitted(std::vector<std::string>& fitted, const std::string& name) {
+  if (std::find(fitted.begin(), fitted.end(), name) == fitted.end()) fitted.push_back(name);
+}
+
+// What the fit over one or several runs arrives at.
+struct JointFit {
+  std::vector<Replay> before;  // the nominal twin, per run (when fitted against it)
+  std::vector<Replay> best;    // the calibrated twin, per run
+  std::vector<std::string> fitted;
+  std::vector<HarmonicOrder> orders;
+  int passes = 0;
+};
+
+// The calibration (twin_calibrator.hpp) over the rows of every run in one solve: the runs
+// share the gear (harmonics, offset, backlash, stiffness) and the bench (input latch delay).
+// `start` is where the parameters begin (an estimate from a static run or a torsional loop);
+// `start_fitted` names what set it. With `against_nominal` the nominal twin is replayed too
+// (`before`) and stays the calibration when nothing beats it; otherwise the start is the
+// baseline (a unit's twin over several runs: the replays cost what the runs measured).
+JointFit fit_jointly(const model::GearParams& nominal, const model::GearParams& start,
+                     const std::string& start_fitted, const procedures::GearSense& sense,
+                     std::span<const std::span<const storage::SyncSample>> runs,
+                     analysis::SpectrumAnalyser& analyser, const TwinCalibrationOptions& options,
+                     bool against_nominal) {
+  JointFit out;
+  model::GearParams params = start;
+  TwinSolverOptions solver = options.solver;
+  if (!start_fitted.empty()) out.fitted.push_back(start_fitted);
+  std::vector<Replay> best;
+  std::vector<Replay> current;
+  if (against_nominal) {
+    out.before = replay_all(nominal, sense, runs, analyser, options.solver);
+    best = out.before;
+    current = best;
+    if (!start_fitted.empty()) {
+      current = replay_all(params, sense, runs, analyser, solver);
+      // With passes = 0 the estimate alone is the calibration; otherwise the best replay wins.
+      if (options.passes == 0 || pooled_rms(current) < pooled_rms(best)) best = current;
+    }
+  } else {
+    current = replay_all(params, sense, runs, analyser, solver);
+    best = current;
+  }
+
+  const auto candidates = candidate_orders(nominal, options.extra_orders);
+  for (int pass = 0; pass < options.passes; ++pass) {
+    // Rows with everything the fit needs, run after run.
+    std::vector<double> th1, th2, target, flank, twist, torque, speed;
+    const double half = 0.5 * params.backlash.total_rad;
+    const bool elastic = model::is_elastic(params.stiffness.law);
+    std::optional<model::ElasticStiffness> law;
+    if (elastic) law.emplace(params.stiffness);
+    for (const auto& run : current) {
+      for (const auto& p : run.points) {
+        if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
+            !std::isfinite(p.theta2_rad) || !std::isfinite(p.twist_rad)) {
+          continue;
+        }
+        th1.push_back(p.theta1_rad);
+        th2.push_back(p.theta2_rad);
+        target.push_back(p.predicted_te_rad - p.measured_te_rad);  // δe + flank·δb/2 + δx
+        flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
+        twist.push_back(p.spring_twist_rad);
+        torque.push_back(law ? spring_torque(*law, p.spring_twist_rad) : p.gear_torque_nm);
+        speed.push_back(p.omega1_rad_s / sense.ratio);
+      }
+    }
+    const std::size_t n = target.size();
+    if (n == 0) break;
+    // The basis the runs resolve together.
+    std::vector<HarmonicOrder> orders;
+    for (const auto& o : candidates) {
+      double lo = INFINITY, hi = -INFINITY;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double u = o.order_input * th1[i] + o.order_output * th2[i];
+        lo = std::min(lo, u);
+        hi = std::max(hi, u);
+      }
+      if (hi - lo >= options.min_phase_span_rad) orders.push_back(o);
+    }
+    std::vector<std::vector<double>> regressors;
+    std::vector<std::string> names;
+    std::vector<double> scales;
+    const auto add_scaled = [&](std::vector<double> column, const std::string& name) {
+      double squares = 0;
+      for (const double v : column) squares += v * v;
+      const double scale = std::sqrt(squares / static_cast<double>(n));
+      if (!(scale > 0)) return;
+      for (double& v : column) v /= scale;  // a column of order 1, like the others
+      regressors.push_back(std::move(column));
+      names.push_back(name);
+      scales.push_back(scale);
+    };
+    const auto upper = static_cast<double>(std::count(flank.begin(), flank.end(), 0.5));
+    const auto lower = static_cast<double>(std::count(flank.begin(), flank.end(), -0.5));
+    const double need = options.min_flank_fraction * static_cast<double>(n);
+    if (upper >= need && lower >= need) add_scaled(flank, "backlash");
+    // Stiffness: each segment of a catalogue curve on its own where the runs load every
+    // segment (a locked-output loop does), else one factor on the whole law.
+    auto* segments = std::get_if<model::ThreeSegmentStiffness>(&params.stiffness.law);
+    bool per_segment = false;
+    if (segments != nullptr) {
+      auto columns = segment_columns(*segments, torque, options.min_segment_fraction);
+      per_segment = columns.covered[0] && columns.covered[1] && columns.covered[2];
+      if (per_segment) {
+        for (std::size_t i = 0; i < 3; ++i) {
+          add_scaled(std::move(columns.columns[i]), "compliance_k" + std::to_string(i + 1));
+        }
+      }
+    }
+    if (!per_segment && percentile_span(torque, 0.02) >= options.min_torque_span_nm) {
+      add_scaled(twist, "stiffness");
+    }
+    // With the speed's sign always the flank's (runs that only move), the delay and the
+    // backlash cannot be told apart: the backlash is the gear's, so it wins.
+    const bool apart_from_flank = std::abs(correlation(speed, flank)) < 0.9;
+    if (percentile_span(speed, 0.02) >= options.min_speed_span_rad_s && apart_from_flank) {
+      add_scaled(speed, "input_latch_delay");
+    }
+    const auto fit = procedures::fit_te_harmonics(th1, th2, target, orders, regressors);
+    for (const auto& h : fit.fit.harmonics) merge_harmonic(params.te_terms, h);
+    merge_offset(params.te_terms, fit.fit.offset_rad);
+    for (std::size_t r = 0; r < names.size(); ++r) {
+      const double c = fit.coefficients[r] / scales[r];
+      if (names[r] == "backlash") {
+        params.backlash.total_rad = std::max(0.0, params.backlash.total_rad + c);
+      } else if (names[r] == "input_latch_delay") {
+        // pred − meas = −δ·ω1/N: the delay grows by −c.
+        solver.input_latch_delay_s -= c;
+      } else if (names[r] == "stiffness") {
+        // x → (1 + ε)·x under the same torque: k → k/(1 + ε); kept within a factor of 5.
+        model::scale_stiffness(params.stiffness, 1.0 / (1.0 + std::clamp(c, -0.8, 4.0)));
+      } else {
+        // Compliance 1/K of segment i grows by c [rad/(N·m)]; K kept within a factor of 5.
+        double* k = names[r] == "compliance_k1"   ? &segments->k1
+                    : names[r] == "compliance_k2" ? &segments->k2
+                                                  : &segments->k3;
+        *k = std::clamp(1.0 / (1.0 / *k + c), 0.2 * *k, 5.0 * *k);
+      }
+    }
+    note_fitted(out.fitted, "te_harmonics");
+    note_fitted(out.fitted, "offset");
+    for (const auto& name : names) {
+      note_fitted(out.fitted, name.starts_with("compliance") ? "stiffness_per_segment" : name);
+    }
+    out.orders = orders;
+    out.passes = pass + 1;
+    current = replay_all(params, sense, runs, analyser, solver);
+    if (pooled_rms(current) < pooled_rms(best)) best = current;
+  }
+
+  if (against_nominal && pooled_rms(best) >= pooled_rms(out.before) && options.passes > 0) {
+    out.fitted.push_back("no_improvement");  // the nominal twin stays the best there is
+  }
+  out.best = std::move(best);
+  return out;
+}
+
 }  // namespace
+
+double small_twist_stiffness_ratio(const model::GearParams& nominal,
+                                   const model::GearParams& calibrated) {
+  if (!model::is_elastic(nominal.stiffness.law) || !model::is_elastic(calibrated.stiffness.law)) {
+    return 1;
+  }
+  const double k0 = model::ElasticStiffness(nominal.stiffness).small_twist_stiffness();
+  const double k1 = model::ElasticStiffness(calibrated.stiffness).small_twist_stiffness();
+  return k0 > 0 ? k1 / k0 : 1;
+}
 
 double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points) {
   double squares = 0;
@@ -162,144 +385,90 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
                                analysis::SpectrumAnalyser& analyser,
                                const procedures::StaticTeResult* static_run,
                                const TwinCalibrationOptions& options) {
-  TwinCalibration cal;
-  cal.nominal = nominal;
-  Replay best = replay(nominal, sense, samples, analyser, options.solver);
-  cal.before = best.residual;
-
-  model::GearParams params = nominal;
-  TwinSolverOptions solver = options.solver;
-  bool replayed = true;  // `best` holds the replay of `params`
+  model::GearParams start = nominal;
+  std::string start_fitted;
   if (static_run != nullptr) {
     try {
       const auto e = procedures::estimate_stiffness_backlash(*static_run);
-      const double x = nominal_twist(params.stiffness, std::abs(e.load_nm));
+      const double x = nominal_twist(start.stiffness, std::abs(e.load_nm));
       const double factor = x > 0 && std::abs(e.shift_rad) > 0 ? x / std::abs(e.shift_rad) : 0;
       // Only a plausible estimate seeds the fit (a factor of five either way at most).
       if (factor >= 0.2 && factor <= 5 && std::isfinite(e.backlash_rad)) {
-        params.backlash.total_rad = std::abs(e.backlash_rad);
-        model::scale_stiffness(params.stiffness, factor);
-        cal.fitted.push_back("static_estimate");
-        replayed = false;
+        start.backlash.total_rad = std::abs(e.backlash_rad);
+        model::scale_stiffness(start.stiffness, factor);
+        start_fitted = "static_estimate";
       }
     } catch (const std::invalid_argument&) {
       // A static run without two loads or both directions: the sample fit alone decides.
     }
   }
-  Replay current = replayed ? best : replay(params, sense, samples, analyser, solver);
-  // With passes = 0 the estimate alone is the calibration; otherwise the best replay wins.
-  if (!replayed &&
-      (options.passes == 0 || current.residual.rms_arcsec < best.residual.rms_arcsec)) {
-    best = current;
-  }
+  const std::array<std::span<const storage::SyncSample>, 1> runs{samples};
+  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, runs, analyser, options,
+                             /*against_nominal=*/true);
 
-  const auto candidates = candidate_orders(nominal, options.extra_orders);
-  for (int pass = 0; pass < options.passes; ++pass) {
-    // Rows with everything the fit needs.
-    std::vector<double> th1, th2, target, flank, twist, torque, speed;
-    const double half = 0.5 * params.backlash.total_rad;
-    for (const auto& p : current.points) {
-      if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
-          !std::isfinite(p.theta2_rad) || !std::isfinite(p.twist_rad)) {
-        continue;
-      }
-      th1.push_back(p.theta1_rad);
-      th2.push_back(p.theta2_rad);
-      target.push_back(p.predicted_te_rad - p.measured_te_rad);  // δe + flank·δb/2 + ε·x
-      flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
-      twist.push_back(p.spring_twist_rad);
-      torque.push_back(p.gear_torque_nm);
-      speed.push_back(p.omega1_rad_s / sense.ratio);
-    }
-    const std::size_t n = target.size();
-    if (n == 0) break;
-    // The basis the run resolves.
-    std::vector<HarmonicOrder> orders;
-    for (const auto& o : candidates) {
-      double lo = INFINITY, hi = -INFINITY;
-      for (std::size_t i = 0; i < n; ++i) {
-        const double u = o.order_input * th1[i] + o.order_output * th2[i];
-        lo = std::min(lo, u);
-        hi = std::max(hi, u);
-      }
-      if (hi - lo >= options.min_phase_span_rad) orders.push_back(o);
-    }
-    std::vector<std::vector<double>> regressors;
-    std::vector<std::string> names;
-    const auto upper = static_cast<double>(std::count(flank.begin(), flank.end(), 0.5));
-    const auto lower = static_cast<double>(std::count(flank.begin(), flank.end(), -0.5));
-    const double need = options.min_flank_fraction * static_cast<double>(n);
-    if (upper >= need && lower >= need) {
-      regressors.push_back(flank);
-      names.push_back("backlash");
-    }
-    double twist_scale = 0;
-    if (percentile_span(torque, 0.02) >= options.min_torque_span_nm) {
-      double squares = 0;
-      for (double v : twist) squares += v * v;
-      twist_scale = std::sqrt(squares / static_cast<double>(n));
-      for (double& v : twist) v /= twist_scale;  // a column of order 1, like the others
-      regressors.push_back(twist);
-      names.push_back("stiffness");
-    }
-    double speed_scale = 0;
-    // With the speed's sign always the flank's (runs that only move), the delay and the
-    // backlash cannot be told apart: the backlash is the gear's, so it wins.
-    const bool apart_from_flank = std::abs(correlation(speed, flank)) < 0.9;
-    if (percentile_span(speed, 0.02) >= options.min_speed_span_rad_s && apart_from_flank) {
-      double squares = 0;
-      for (double v : speed) squares += v * v;
-      speed_scale = std::sqrt(squares / static_cast<double>(n));
-      for (double& v : speed) v /= speed_scale;
-      regressors.push_back(speed);
-      names.push_back("input_latch_delay");
-    }
-    const auto fit = procedures::fit_te_harmonics(th1, th2, target, orders, regressors);
-    for (const auto& h : fit.fit.harmonics) merge_harmonic(params.te_terms, h);
-    merge_offset(params.te_terms, fit.fit.offset_rad);
-    for (std::size_t r = 0; r < names.size(); ++r) {
-      const double c = fit.coefficients[r];
-      if (names[r] == "backlash") {
-        params.backlash.total_rad = std::max(0.0, params.backlash.total_rad + c);
-      } else if (names[r] == "input_latch_delay") {
-        // pred − meas = −δ·ω1/N: the delay grows by −c (per unit of the scaled column).
-        solver.input_latch_delay_s -= c / speed_scale;
-      } else {
-        // x → (1 + ε)·x under the same torque: k → k/(1 + ε); kept within a factor of 5.
-        const double eps = std::clamp(c / twist_scale, -0.8, 4.0);
-        model::scale_stiffness(params.stiffness, 1.0 / (1.0 + eps));
-      }
-    }
-    for (const auto& name : {std::string("te_harmonics"), std::string("offset")}) {
-      if (std::find(cal.fitted.begin(), cal.fitted.end(), name) == cal.fitted.end()) {
-        cal.fitted.push_back(name);
-      }
-    }
-    for (const auto& name : names) {
-      if (std::find(cal.fitted.begin(), cal.fitted.end(), name) == cal.fitted.end()) {
-        cal.fitted.push_back(name);
-      }
-    }
-    cal.orders = orders;
-    cal.passes = pass + 1;
-    current = replay(params, sense, samples, analyser, solver);
-    if (current.residual.rms_arcsec < best.residual.rms_arcsec) best = current;
-  }
-
-  if (best.residual.rms_arcsec >= cal.before.rms_arcsec && options.passes > 0) {
-    cal.fitted.push_back("no_improvement");  // the nominal twin stays the best there is
-  }
+  TwinCalibration cal;
+  cal.nominal = nominal;
+  cal.before = std::move(fit.before[0].residual);
+  Replay& best = fit.best[0];
   cal.calibrated = best.params;
   cal.solver = best.solver;
   cal.calibrated.name = nominal.name + " (calibrated)";
-  cal.after = best.residual;
+  cal.after = std::move(best.residual);
   cal.replay_after = std::move(best.points);
   cal.noise_floor_arcsec = estimate_te_noise_floor_arcsec(cal.replay_after);
-  // Stiffness factor: the calibrated law's small-twist stiffness over the nominal's.
-  if (model::is_elastic(nominal.stiffness.law) && model::is_elastic(cal.calibrated.stiffness.law)) {
-    const double k0 = model::ElasticStiffness(nominal.stiffness).small_twist_stiffness();
-    const double k1 = model::ElasticStiffness(cal.calibrated.stiffness).small_twist_stiffness();
-    if (k0 > 0) cal.stiffness_factor = k1 / k0;
+  cal.fitted = std::move(fit.fitted);
+  cal.orders = std::move(fit.orders);
+  cal.passes = fit.passes;
+  cal.stiffness_factor = small_twist_stiffness_ratio(nominal, cal.calibrated);
+  return cal;
+}
+
+UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
+                                        const procedures::GearSense& sense,
+                                        std::span<const UnitRunSamples> runs,
+                                        analysis::SpectrumAnalyser& analyser,
+                                        const UnitTwinStart& start_from,
+                                        const TwinCalibrationOptions& options) {
+  if (runs.empty()) throw std::invalid_argument("unit twin: no runs to calibrate from");
+  model::GearParams start = nominal;
+  std::string start_fitted;
+  if (start_from.loop_stiffness) {
+    const auto& k = *start_from.loop_stiffness;
+    if (!(k.k1 > 0 && k.k2 > 0 && k.k3 > 0 && k.t1 > 0 && k.t2 > k.t1)) {
+      throw std::invalid_argument(
+          "unit twin: the torsional loop's K1/K2/K3 and T1/T2 are not a catalogue curve (expected "
+          "K > 0 and 0 < T1 < T2)");
+    }
+    start.stiffness.law = k;
+    start.stiffness.mean_stiffness.reset();
+    start_fitted = "torsional_loop";
+  }
+  if (start_from.loop_backlash_rad && std::isfinite(*start_from.loop_backlash_rad)) {
+    start.backlash.total_rad = std::abs(*start_from.loop_backlash_rad);
+    start_fitted = "torsional_loop";
+  }
+  std::vector<std::span<const storage::SyncSample>> spans;
+  for (const auto& r : runs) spans.push_back(r.samples);
+  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, spans, analyser, options,
+                             /*against_nominal=*/false);
+
+  UnitTwinCalibration cal;
+  cal.nominal = nominal;
+  cal.calibrated = fit.best[0].params;
+  cal.calibrated.name = nominal.name + " (unit twin)";
+  cal.solver = fit.best[0].solver;
+  cal.fitted = std::move(fit.fitted);
+  cal.orders = std::move(fit.orders);
+  cal.passes = fit.passes;
+  cal.stiffness_factor = small_twist_stiffness_ratio(nominal, cal.calibrated);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    UnitRunResidual r;
+    r.run_id = runs[i].run_id;
+    r.procedure = runs[i].procedure;
+    r.samples = runs[i].samples.size();
+    r.noise_floor_arcsec = estimate_te_noise_floor_arcsec(fit.best[i].points);
+    r.after = std::move(fit.best[i].residual);
+    cal.runs.push_back(std::move(r));
   }
   return cal;
 }
@@ -323,15 +492,60 @@ void write_calibrated_twin_config(const std::filesystem::path& file,
   storage::write_file_atomically(file, config::write_twin_case_yaml(twin, comment));
 }
 
-nlohmann::json to_json(const TwinCalibration& c) {
+namespace {
+
+nlohmann::json te_terms_json(const model::GearParams& gear) {
   nlohmann::json terms = nlohmann::json::array();
-  for (const auto& t : c.calibrated.te_terms) {
+  for (const auto& t : gear.te_terms) {
     terms.push_back({{"source", t.source},
                      {"order_input", t.order_input},
                      {"order_output", t.order_output},
                      {"amplitude_arcsec", t.amplitude_rad * kArcsecPerRad},
                      {"phase_rad", t.phase_rad}});
   }
+  return terms;
+}
+
+nlohmann::json stiffness_json(const model::GearParams& gear) {
+  if (const auto* k = std::get_if<model::ThreeSegmentStiffness>(&gear.stiffness.law)) {
+    return {{"form", "three_segment"}, {"k1_nm_per_rad", k->k1}, {"t1_nm", k->t1},
+            {"k2_nm_per_rad", k->k2},  {"t2_nm", k->t2},         {"k3_nm_per_rad", k->k3}};
+  }
+  if (model::is_elastic(gear.stiffness.law)) {
+    return {{"form", "other"},
+            {"small_twist_nm_per_rad",
+             model::ElasticStiffness(gear.stiffness).small_twist_stiffness()}};
+  }
+  return {{"form", "hysteretic"}};
+}
+
+}  // namespace
+
+nlohmann::json to_json(const UnitTwinCalibration& c) {
+  nlohmann::json runs = nlohmann::json::array();
+  for (const auto& r : c.runs) {
+    runs.push_back({{"run_id", r.run_id},
+                    {"procedure", r.procedure},
+                    {"samples", r.samples},
+                    {"rms_after_arcsec", r.after.rms_arcsec},
+                    {"mean_after_arcsec", r.after.mean_arcsec},
+                    {"noise_floor_arcsec", r.noise_floor_arcsec},
+                    {"rms_after_over_noise_floor",
+                     r.noise_floor_arcsec > 0 ? r.after.rms_arcsec / r.noise_floor_arcsec : 0.0}});
+  }
+  return {{"runs", runs},
+          {"stiffness_nominal", stiffness_json(c.nominal)},
+          {"stiffness", stiffness_json(c.calibrated)},
+          {"stiffness_factor", c.stiffness_factor},
+          {"backlash_nominal_arcmin", c.nominal.backlash.total_rad * kArcminPerRad},
+          {"backlash_arcmin", c.calibrated.backlash.total_rad * kArcminPerRad},
+          {"input_latch_delay_s", c.solver.input_latch_delay_s},
+          {"fitted", c.fitted},
+          {"passes", c.passes},
+          {"te_terms", te_terms_json(c.calibrated)}};
+}
+
+nlohmann::json to_json(const TwinCalibration& c) {
   return {{"residual_before", procedures::to_json(c.before)},
           {"residual_after", procedures::to_json(c.after)},
           {"rms_before_arcsec", c.before.rms_arcsec},
@@ -345,7 +559,7 @@ nlohmann::json to_json(const TwinCalibration& c) {
           {"input_latch_delay_s", c.solver.input_latch_delay_s},
           {"fitted", c.fitted},
           {"passes", c.passes},
-          {"te_terms", terms}};
+          {"te_terms", te_terms_json(c.calibrated)}};
 }
 
 }  // namespace wavebench::twin

@@ -408,10 +408,20 @@ function twinSections(run, results) {
     return [section('twin', 'Gear twin', el('p', { class: 'warning' }, `The twin did not run: ${t.error}`))];
   }
   const cal = t.calibration;
+  // Which twin ran: the unit's own (calibrated over its earlier runs) or the bench's nominal one.
+  const gear = t.gear;
+  const twinUsed = !gear ? '–'
+    : gear.kind === 'unit'
+      ? `unit twin (${gear.case}), calibrated over ${(gear.calibrated_from || []).map((r) => `${r.procedure} ${r.run_id}`).join(', ')}`
+      : `nominal twin case (${gear.case})`;
   const rows = [
+    ['Twin beside the bench', twinUsed],
     ['Residual RMS, live twin [arcsec]', num(t.residual && t.residual.rms_arcsec)],
     ['Residual p2p, live twin [arcsec]', num(t.residual && t.residual.p2p_arcsec)],
   ];
+  if (t.residual && t.residual.rms_over_noise_floor != null) {
+    rows.push(['Live residual RMS / noise floor', num(t.residual.rms_over_noise_floor)]);
+  }
   if (cal) {
     rows.push(['Residual RMS before calibration [arcsec]', num(cal.rms_before_arcsec)],
       ['Residual RMS after calibration [arcsec]', num(cal.rms_after_arcsec)],
@@ -419,6 +429,18 @@ function twinSections(run, results) {
       ['Backlash nominal → calibrated [arcmin]', `${num(cal.backlash_nominal_arcmin)} → ${num(cal.backlash_calibrated_arcmin)}`],
       ['Stiffness factor', num(cal.stiffness_factor)],
       ['Fitted', (cal.fitted || []).join(', ') || '–']);
+  }
+  const unit = t.unit_twin;
+  if (unit && unit.error) {
+    rows.push(['Unit twin not updated', unit.error]);
+  } else if (unit) {
+    const k = unit.stiffness || {};
+    rows.push(['Unit twin updated from', (unit.runs || []).map((r) => `${r.procedure} (${num(r.rms_after_over_noise_floor)} × floor)`).join(', ')]);
+    if (k.form === 'three_segment') {
+      rows.push(['Unit twin K1 / K2 / K3 [N·m/rad]', `${num(k.k1_nm_per_rad)} / ${num(k.k2_nm_per_rad)} / ${num(k.k3_nm_per_rad)}`],
+        ['Unit twin T1 / T2 [N·m]', `${num(k.t1_nm)} / ${num(k.t2_nm)}`]);
+    }
+    rows.push(['Unit twin backlash [arcmin]', num(unit.backlash_arcmin)]);
   }
   rows.push(['Samples predicted / dropped', `${t.samples_predicted ?? '–'} / ${t.samples_dropped ?? '–'}`]);
   if (t.error) rows.push(['Stopped early', t.error]);

@@ -19,6 +19,7 @@
 
 #include <filesystem>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -47,6 +48,10 @@ struct TwinCalibrationOptions {
   // Stiffness is fitted only when the gear torque (2nd to 98th percentile) spans this much:
   // at one load the twist is confounded with the TE offset.
   double min_torque_span_nm = 5;
+  // A catalogue curve's K1, K2 and K3 are fitted each on its own only when every segment
+  // holds this fraction of the rows well inside it (a locked-output loop); otherwise one
+  // factor scales the whole law (a static run at two loads cannot tell the segments apart).
+  double min_segment_fraction = 0.02;
 };
 
 struct TwinCalibration {
@@ -74,12 +79,62 @@ struct TwinCalibration {
 // samples.
 double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points);
 
+// The calibrated law's small-twist stiffness over the nominal's (1 when either is not elastic).
+double small_twist_stiffness_ratio(const model::GearParams& nominal,
+                                   const model::GearParams& calibrated);
+
 // Throws std::invalid_argument when fewer samples than unknowns carry a measured TE.
 TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
                                analysis::SpectrumAnalyser& analyser,
                                const procedures::StaticTeResult* static_run = nullptr,
                                const TwinCalibrationOptions& options = {});
+
+// One twin per unit (issue #11): the calibration above over several runs of the same unit in
+// one solve (a locked-output loop, a static run, a dynamic run, ...): their rows share the
+// gear's harmonics, offset, backlash and stiffness and the bench's input latch delay, so each
+// run pins what it resolves (the loop the stiffness of each segment, the static run the TE at
+// standstill on both flanks, the dynamic run the harmonics in motion and the latch delay against
+// the standstill). The best replay is the one with the lowest RMS residual over all runs.
+struct UnitRunSamples {
+  std::string run_id;
+  std::string procedure;
+  std::span<const storage::SyncSample> samples;
+};
+// Where the fit starts: the torsional loop's catalogue curve and backlash, when there is one.
+struct UnitTwinStart {
+  std::optional<model::ThreeSegmentStiffness> loop_stiffness;
+  std::optional<double> loop_backlash_rad;
+};
+struct UnitRunResidual {
+  std::string run_id;
+  std::string procedure;
+  std::size_t samples = 0;
+  procedures::TwinResidual after;  // the unit twin over the run
+  double noise_floor_arcsec = 0;   // estimated from the unit twin's residual
+};
+struct UnitTwinCalibration {
+  model::GearParams nominal;
+  model::GearParams calibrated;
+  TwinSolverOptions solver;  // with the fitted input latch delay
+  std::vector<UnitRunResidual> runs;
+  std::vector<std::string> fitted;
+  std::vector<procedures::HarmonicOrder> orders;
+  int passes = 0;
+  double stiffness_factor = 1;
+};
+// Throws std::invalid_argument when `runs` is empty, the loop's curve is not one (K ≤ 0,
+// T2 ≤ T1) or fewer samples than unknowns carry a measured TE.
+UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
+                                        const procedures::GearSense& sense,
+                                        std::span<const UnitRunSamples> runs,
+                                        analysis::SpectrumAnalyser& analyser,
+                                        const UnitTwinStart& start = {},
+                                        const TwinCalibrationOptions& options = {});
+
+// Per run: the unit twin's residual and its floor; the stiffness law, backlash, latch delay,
+// what was fitted and the TE terms.
+nlohmann::json to_json(const UnitTwinCalibration& calibration);
 
 // The calibrated gear as a twin case (configs/twin schema, loadable by load_twin_case), with
 // the residual before/after in its header comment. Written atomically.
