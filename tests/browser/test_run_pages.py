@@ -176,6 +176,9 @@ class RunPagesTest(unittest.TestCase):
         self.assertIn("1/rev", self.browser.find_element(By.ID, "peaks-table").text)
         self.assertEqual(len(self.canvases("twin-plot")), 1)
         self.assertEqual(len(self.canvases("twin-residual-plot")), 1)
+        # Which twin ran beside the bench (the unit's own or the nominal case) is said.
+        twin_table = self.browser.find_element(By.ID, "twin-table").text
+        self.assertRegex(twin_table, r"Twin beside the bench\s+(unit twin|nominal twin case)")
         note = self.browser.find_element(By.ID, "trace-note")
         WebDriverWait(self.browser, 20).until(lambda b: "min/max" in note.text)
         self.shot("run-page-dynamic")
@@ -238,7 +241,9 @@ class RunPagesTest(unittest.TestCase):
         WebDriverWait(self.browser, 30).until(
             lambda b: b.execute_script("return document.body.dataset.ready === 'true'"))
         self.shot("compare")
-        self.assertEqual(len(self.browser.find_elements(By.CSS_SELECTOR, "#compare-table tbody tr")), 2)
+        self.assertEqual(len(self.browser.find_elements(By.CSS_SELECTOR, "#compare-table > tbody > tr")), 2)
+        # Figures with their expanded uncertainty, as on the run page.
+        self.assertIn("±", self.browser.find_element(By.ID, "compare-table").text)
         self.assertEqual(len(self.canvases("static-plot")), 1)
         self.assertEqual(len(self.canvases("lost-motion-plot")), 1)
         # One legend entry per run and pass (x is the first): 2 runs x (forward, reverse).

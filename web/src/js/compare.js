@@ -2,7 +2,7 @@
 // TE order spectra on one plot each, one colour per run (two units, or one unit before and
 // after run-in). Sections come from each run's results.json keys (docs/formats/results.md).
 import { get } from './api.js';
-import { el, num, table, section, verdictOf, specName } from './dom.js';
+import { el, num, table, section, verdictOf, specName, uncertain } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
 
 const main = document.getElementById('compare');
@@ -19,6 +19,23 @@ function label(run) {
   return `${run.unit_serial || '?'} ${when}`;
 }
 
+// Figures with their expanded uncertainty (k = 2), as the run page shows them: two units are
+// told apart only where their intervals are.
+function staticP2pMax(results) {
+  const entries = (results.static || []).filter((p) => p.p2p_arcmin != null && Number.isFinite(p.p2p_arcmin));
+  if (!entries.length) return '–';
+  const largest = entries.reduce((a, b) => (b.p2p_arcmin > a.p2p_arcmin ? b : a));
+  return uncertain(largest, 'p2p_arcmin');
+}
+
+function lostMotion(results) {
+  // The catalogues' figure (locked output) first, then the brake ladder's fit.
+  const t = results.torsional && results.torsional.lost_motion_arcmin;
+  if (t && t.value != null) return t.expanded != null ? `${num(t.value)} ± ${num(t.expanded, 2)}` : num(t.value);
+  if (results.lost_motion_fit) return uncertain(results.lost_motion_fit, 'lost_motion_arcmin');
+  return num(maxOf((results.lost_motion || []).map((l) => l.max_arcmin)));
+}
+
 function summary(runs) {
   return section('summary', 'Runs',
     table([
@@ -28,9 +45,9 @@ function summary(runs) {
       { label: 'Procedure', value: (r) => r.run.procedure },
       { label: 'Spec', value: (r) => specName(r.run, r.results) || '–' },
       { label: 'Verdict', value: (r) => verdictOf(r.run, r.results) || '–' },
-      { label: 'Static TE p2p max [arcmin]', value: (r) => num(maxOf((r.results.static || []).map((p) => p.p2p_arcmin))), class: 'n' },
-      { label: 'Lost motion max [arcmin]', value: (r) => num(r.results.lost_motion_fit ? r.results.lost_motion_fit.lost_motion_arcmin : maxOf((r.results.lost_motion || []).map((l) => l.max_arcmin))), class: 'n' },
-      { label: 'Dynamic TE p2p [arcsec]', value: (r) => num(r.results.dynamic && r.results.dynamic.p2p_arcsec), class: 'n' },
+      { label: 'Static TE p2p max ± U [arcmin]', value: (r) => staticP2pMax(r.results), class: 'n' },
+      { label: 'Lost motion ± U [arcmin]', value: (r) => lostMotion(r.results), class: 'n' },
+      { label: 'Dynamic TE p2p ± U [arcsec]', value: (r) => (r.results.dynamic ? uncertain(r.results.dynamic, 'p2p_arcsec') : '–'), class: 'n' },
     ], runs, { id: 'compare-table' }));
 }
 
