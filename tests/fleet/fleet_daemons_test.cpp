@@ -18,6 +18,7 @@
 #include "postgres_server.hpp"
 #include "synthetic_runs.hpp"
 #include "wavebench/daemon/daemon_client.hpp"
+#include "wavebench/daemon/http_target.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
 
 namespace wavebench::fleet {
@@ -147,6 +148,17 @@ TEST_F(FleetDaemons, TwoDaemonsAtOnceEveryRunExactlyOnceWithItsResults) {
     }
     EXPECT_DOUBLE_EQ(r.figures["static_te_p2p"].get<double>(), largest);
   }
+
+  // The same store through a daemon's API.
+  const auto spc = client("bench-a").get("/api/fleet/spc?figure=static_te_p2p&model=" +
+                                         daemon::url_encode("Bench unit (seed 004)"));
+  ASSERT_EQ(spc.status, 200) << spc.body.dump();
+  EXPECT_EQ(spc.body["points"].size(), 2u * kRuns);
+  EXPECT_DOUBLE_EQ(spc.body["limits"]["upper"].get<double>(), 7.0);  // sim-seed004's limit
+  EXPECT_EQ(spc.body["spc"]["n"], 2 * kRuns);
+  const auto bad = client("bench-b").get("/api/fleet/trend?figure=nonsense&model=x");
+  EXPECT_EQ(bad.status, 400) << bad.body.dump();
+  EXPECT_NE(bad.body.dump().find("nonsense"), std::string::npos);
 }
 
 TEST_F(FleetDaemons, ServerStoppedMidRunTheRunArrivesOnceAfterItReturns) {

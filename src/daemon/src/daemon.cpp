@@ -7,6 +7,7 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/console_files.hpp"
+#include "wavebench/daemon/fleet_api.hpp"
 #include "wavebench/daemon/publishing_run_launcher.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
 
@@ -57,6 +58,7 @@ Daemon::Daemon(DaemonSetup setup)
            setup_.specs_dir, std::make_shared<const ConsoleFiles>(setup_.console_root),
            SoftwareIdentity{setup_.software_version, setup_.software_commit}) {
   bench_thread_.set_check(setup_.bench_check);
+  if (setup_.results.shared()) api_.set_fleet_queries(make_fleet_queries(setup_.results));
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(), store_.count_runs(),

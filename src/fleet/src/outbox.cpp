@@ -131,14 +131,16 @@ void Outbox::mark_published(const std::string& run_id) {
   }
 }
 
-void Outbox::send_one(ResultsStore& db, const std::string& run_id) {
+// Whether the run was published (not: not indexed here, or still running).
+bool Outbox::send_one(ResultsStore& db, const std::string& run_id) {
   const auto run = store_.find_run(run_id);
-  if (!run) return;                                         // not indexed here: nothing to send
-  if (run->status == storage::RunStatus::kRunning) return;  // enqueued again at its end
+  if (!run) return false;  // not indexed here: nothing to send
+  if (run->status == storage::RunStatus::kRunning) return false;  // enqueued again at its end
   const auto summary =
       summarise_run(*run, read_results(store_.paths(run_id).results), options_.identity);
   db.publish(summary);
   mark_published(run_id);
+  return true;
 }
 
 void Outbox::run() {
@@ -158,12 +160,12 @@ void Outbox::run() {
     }
     try {
       if (!db) db = connect_();
-      send_one(*db, id);
+      const bool sent = send_one(*db, id);
       {
         std::lock_guard lock(mutex_);
         const auto it = std::find(pending_.begin(), pending_.end(), id);
         if (it != pending_.end()) pending_.erase(it);
-        ++counts_.sent;
+        if (sent) ++counts_.sent;
       }
       changed_.notify_all();
       if (failing) event("results store: reachable again, sending the runs that waited");

@@ -46,6 +46,10 @@ ResultsConfig parse_results_config(const std::string& yaml_text, const std::stri
         config.password_file = std::filesystem::path(source).parent_path() / config.password_file;
       }
     }
+  } else {
+    // Kept for when the store is switched back: read, not used.
+    (void)results.optional_text("url");
+    (void)results.optional_text("password_file");
   }
   if (const auto bench = results.optional_text("bench")) {
     if (!is_name(*bench)) {

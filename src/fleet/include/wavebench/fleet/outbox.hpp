@@ -64,7 +64,7 @@ class Outbox {
 
  private:
   void run();
-  void send_one(ResultsStore& store, const std::string& run_id);
+  bool send_one(ResultsStore& store, const std::string& run_id);
   void mark_published(const std::string& run_id);
 
   const storage::RunStore& store_;
