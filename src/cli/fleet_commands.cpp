@@ -1,6 +1,7 @@
 // `wavebench fleet runs|trend|spc`: the lab's shared results store (issue #13), read directly
 // with the daemon's `--results FILE` (or $WAVEBENCH_RESULTS_CONFIG). Tables on stdout, or JSON
 // with --json. Exit 2 for a bad config or argument, 1 when the store cannot be reached.
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -18,7 +19,7 @@ namespace {
 struct FleetArgs {
   std::string results;
   std::string model, bench, unit, procedure, verdict, from, to, direction, figure;
-  std::optional<double> load_nm, lsl, usl;
+  std::string load_nm, lsl, usl;  // numbers, parsed with their option's name in errors
   int limit = 50;
   int last = 0;
   bool json = false;
@@ -27,6 +28,21 @@ struct FleetArgs {
 std::optional<std::string> given(const std::string& text) {
   if (text.empty()) return std::nullopt;
   return text;
+}
+
+std::optional<double> number_option(const std::string& name, const std::string& text) {
+  if (text.empty()) return std::nullopt;
+  std::size_t used = 0;
+  double value = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || !std::isfinite(value)) {
+    throw std::invalid_argument(name + ": got '" + text + "', expected a number");
+  }
+  return value;
 }
 
 std::string results_file(const FleetArgs& args) {
@@ -47,7 +63,7 @@ fleet::FigureQuery figure_query(const FleetArgs& args) {
   q.gear_model = args.model;
   q.bench = given(args.bench);
   q.direction = given(args.direction);
-  q.load_nm = args.load_nm;
+  q.load_nm = number_option("--load", args.load_nm);
   q.from = given(args.from);
   q.to = given(args.to);
   q.last = args.last;
@@ -121,7 +137,7 @@ void print_trend(fleet::ResultsStore& store, const FleetArgs& args) {
 
 void print_spc(fleet::ResultsStore& store, const FleetArgs& args) {
   const auto q = figure_query(args);
-  fleet::SpecLimits limits{args.lsl, args.usl};
+  fleet::SpecLimits limits{number_option("--lsl", args.lsl), number_option("--usl", args.usl)};
   const auto answer = store.spc(q, limits);
   const auto& figure = fleet::find_fleet_figure(q.figure);
   if (args.json) {

@@ -31,11 +31,13 @@ using daemon::testing::DaemonProcess;
 constexpr const char* kToken = "fedcba9876543210fedcba9876543210";
 
 // A short static run on the simulated bench, judged against the simulated unit's spec.
-const nlohmann::json kShortRun = {{"procedure", "static"},
-                                  {"options", {{"positions", 4}, {"loads_nm", {0}}}},
-                                  {"spec", "sim-seed004"},
-                                  {"twin", false},
-                                  {"report", false}};
+const nlohmann::json kShortRun = {
+    {"procedure", "static"},
+    {"options",
+     {{"positions", 4}, {"loads_nm", {0}}, {"move_speed_rad_s", 250}, {"window_s", 0.2}}},
+    {"spec", "sim-seed004"},
+    {"twin", false},
+    {"report", false}};
 
 bool eventually(const std::function<bool()>& done, std::chrono::seconds limit = 180s) {
   const auto deadline = std::chrono::steady_clock::now() + limit;
