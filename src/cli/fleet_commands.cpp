@@ -8,10 +8,12 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "commands.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
+#include "wavebench/report/figure.hpp"
 
 namespace wavebench::cli {
 namespace {
@@ -23,6 +25,7 @@ struct FleetArgs {
   int limit = 50;
   int last = 0;
   bool json = false;
+  std::string png;  // trend, spc: the chart as a PNG too
 };
 
 std::optional<std::string> given(const std::string& text) {
@@ -80,6 +83,37 @@ std::string number(const std::optional<double>& v) {
   return v ? number(*v) : "-";
 }
 
+// The trend as an individuals chart: the values in run order, and with SPC its centre line,
+// control limits and spec limits.
+void write_chart(const std::string& path, const fleet::FleetFigure& figure,
+                 const std::string& model, const std::vector<fleet::TrendPoint>& points,
+                 const fleet::SpcAnswer* spc) {
+  report::Figure chart(1, 1, std::string(figure.name) + " of " + model);
+  auto& axes = chart.axes(0, 0);
+  axes.title = spc ? "individuals chart" : "trend";
+  axes.x_label = "run (oldest first)";
+  axes.y_label = std::string(figure.name) + " [" + figure.unit + "]";
+  std::vector<double> x, y;
+  for (const auto& p : points) {
+    x.push_back(p.sequence);
+    y.push_back(p.value);
+  }
+  axes.line(x, y, "runs", report::palette(0));
+  axes.scatter(x, y, {}, report::palette(0), 2.0);
+  const double first = x.empty() ? 0 : x.front(), last = x.empty() ? 1 : x.back();
+  const auto level = [&](double value, const std::string& label, int color) {
+    axes.line({first, last}, {value, value}, label, report::palette(color));
+  };
+  if (spc && points.size() >= 2) {
+    level(spc->figures.mean, "mean", 1);
+    level(spc->figures.ucl, "UCL (mean + 2.66 MR-bar)", 2);
+    level(spc->figures.lcl, "LCL", 2);
+    if (spc->limits.upper) level(*spc->limits.upper, "upper spec limit", 3);
+    if (spc->limits.lower) level(*spc->limits.lower, "lower spec limit", 3);
+  }
+  chart.write_png(path);
+}
+
 void print_runs(fleet::ResultsStore& store, const FleetArgs& args) {
   fleet::FleetRunQuery q;
   q.gear_model = given(args.model);
@@ -114,6 +148,7 @@ void print_trend(fleet::ResultsStore& store, const FleetArgs& args) {
   const auto q = figure_query(args);
   const auto points = store.trend(q);
   const auto& figure = fleet::find_fleet_figure(q.figure);
+  if (!args.png.empty()) write_chart(args.png, figure, q.gear_model, points, nullptr);
   if (args.json) {
     nlohmann::json out = nlohmann::json::array();
     for (const auto& p : points) out.push_back(fleet::to_json(p));
@@ -140,6 +175,7 @@ void print_spc(fleet::ResultsStore& store, const FleetArgs& args) {
   fleet::SpecLimits limits{number_option("--lsl", args.lsl), number_option("--usl", args.usl)};
   const auto answer = store.spc(q, limits);
   const auto& figure = fleet::find_fleet_figure(q.figure);
+  if (!args.png.empty()) write_chart(args.png, figure, q.gear_model, answer.points, &answer);
   if (args.json) {
     auto j = fleet::to_json(answer);
     j["figure"] = figure.name;
@@ -222,6 +258,7 @@ void add_figure(CLI::App* cmd, FleetArgs& args) {
   cmd->add_option("--direction", args.direction, "static_te_p2p: one direction (forward|reverse)");
   cmd->add_option("--load", args.load_nm, "static_te_p2p: one load [N*m]");
   cmd->add_option("--last", args.last, "only the newest N runs")->check(CLI::NonNegativeNumber);
+  cmd->add_option("--png", args.png, "also draw the chart into this PNG file");
 }
 
 }  // namespace

@@ -53,11 +53,18 @@ TEST_F(FleetCli, SpcAsJsonAndTables) {
   EXPECT_NEAR(j["spc"]["mr_bar"].get<double>(), 0.03, 1e-12);
   EXPECT_DOUBLE_EQ(j["limits"]["upper"].get<double>(), 1.0);
 
-  const auto table = run_cli(fleet("spc --figure static_te_p2p --model CSF-25-100-2A-GR --usl 0.9"),
+  const auto png = dir_ / "spc.png";
+  const auto table = run_cli(fleet("spc --figure static_te_p2p --model CSF-25-100-2A-GR --usl 0.9 "
+                                   "--png '" +
+                                   png.string() + "'"),
                              dir_ / "table.txt");
   ASSERT_EQ(table.exit_code, 0) << table.output;
   EXPECT_NE(table.output.find("limits from command line"), std::string::npos) << table.output;
   EXPECT_NE(table.output.find("Cpk"), std::string::npos) << table.output;
+  std::ifstream chart(png, std::ios::binary);
+  std::string magic(8, '\0');
+  chart.read(magic.data(), 8);
+  EXPECT_EQ(magic, std::string("\x89PNG\r\n\x1a\n", 8));
 
   const auto runs = run_cli(fleet("runs --bench bench-c"), dir_ / "runs.txt");
   ASSERT_EQ(runs.exit_code, 0) << runs.output;
