@@ -10,7 +10,7 @@ namespace {
 
 // mean 3; squares 4+1+0+4+1 = 10, sigma = sqrt(10/4) = 1.581139; moving ranges 1, 1, 2, 1:
 // MR-bar 1.25, sigma within 1.25/1.128 = 1.108156; UCL 3 + 2.66·1.25 = 6.325, LCL -0.325.
-// Limits 0..7: Cp 7/(6·1.108156) = 1.052812, Cpk min(4, 3)/(3·1.108156) = 0.902410,
+// Limits 0..7: Cp 7/(6·1.25/1.128) = 7.896/7.5 = 1.0528, Cpk min(4, 3)/(3·1.25/1.128) = 0.9024,
 // Pp 7/(6·1.581139) = 0.737865, Ppk 3/(3·1.581139) = 0.632456.
 TEST(Spc, HandWorkedExample) {
   const auto s = spc_figures({1, 2, 3, 5, 4}, {0.0, 7.0});
@@ -22,8 +22,8 @@ TEST(Spc, HandWorkedExample) {
   EXPECT_NEAR(s.ucl, 6.325, 1e-12);
   EXPECT_NEAR(s.lcl, -0.325, 1e-12);
   ASSERT_TRUE(s.cp && s.cpk && s.pp && s.ppk);
-  EXPECT_NEAR(*s.cp, 1.052812, 1e-6);
-  EXPECT_NEAR(*s.cpk, 0.902410, 1e-6);
+  EXPECT_NEAR(*s.cp, 1.0528, 1e-12);
+  EXPECT_NEAR(*s.cpk, 0.9024, 1e-12);
   EXPECT_NEAR(*s.pp, 0.737865, 1e-6);
   EXPECT_NEAR(*s.ppk, 0.632456, 1e-6);
   EXPECT_TRUE(s.out_of_control.empty());
