@@ -19,5 +19,6 @@ void register_daemon_client_commands(CLI::App& app,
                                      ExitStatus& status);          // status|start|abort|runs|export
 void register_report_commands(CLI::App& app, ExitStatus& status);  // report RUN_DIR
 void register_bench_commands(CLI::App& app, ExitStatus& status);   // bench check
+void register_fleet_commands(CLI::App& app, ExitStatus& status);   // fleet runs|trend|spc
 
 }  // namespace wavebench::cli

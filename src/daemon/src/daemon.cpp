@@ -2,9 +2,14 @@
 
 #include <spdlog/spdlog.h>
 
+#include <algorithm>
+#include <chrono>
 #include <stdexcept>
 
 #include "wavebench/daemon/console_files.hpp"
+#include "wavebench/daemon/fleet_api.hpp"
+#include "wavebench/daemon/publishing_run_launcher.hpp"
+#include "wavebench/fleet/postgres_results_store.hpp"
 
 namespace wavebench::daemon {
 
@@ -18,21 +23,50 @@ DaemonSetup checked(DaemonSetup setup) {
   return setup;
 }
 
+std::unique_ptr<fleet::Outbox> make_outbox(DaemonSetup& setup, const storage::RunStore& store) {
+  if (!setup.results.shared()) return nullptr;
+  fleet::StoreFactory connect = setup.results_store;
+  if (!connect) {
+    connect = [config = setup.results]() -> std::unique_ptr<fleet::ResultsStore> {
+      return std::make_unique<fleet::PostgresResultsStore>(config);
+    };
+  }
+  fleet::OutboxOptions options;
+  options.identity = {setup.results.bench, setup.results.station};
+  options.retry_max = std::chrono::milliseconds(static_cast<long>(setup.results.retry_max_s * 1e3));
+  options.retry_first = std::min(options.retry_first, options.retry_max);
+  options.on_event = [](const std::string& text) { spdlog::warn("{}", text); };
+  return std::make_unique<fleet::Outbox>(store, std::move(connect), std::move(options));
+}
+
+std::unique_ptr<RunLauncher> publishing(std::unique_ptr<RunLauncher> launcher,
+                                        fleet::Outbox* outbox) {
+  if (!outbox) return launcher;
+  return std::make_unique<PublishingRunLauncher>(std::move(launcher), *outbox);
+}
+
 }  // namespace
 
 Daemon::Daemon(DaemonSetup setup)
     : setup_(checked(std::move(setup))),
       store_(setup_.runs_dir, setup_.software_version),
+      outbox_(make_outbox(setup_, store_)),
+      launcher_(publishing(std::move(setup_.launcher), outbox_.get())),
       live_(setup_.live_capacity),
-      bench_thread_(setup_.bench_factory, store_, *setup_.launcher, setup_.config_text, live_),
+      bench_thread_(setup_.bench_factory, store_, *launcher_, setup_.config_text, live_),
       api_(bench_thread_, store_, live_, setup_.token, HostCheck(setup_.allowed_hosts),
            setup_.specs_dir, std::make_shared<const ConsoleFiles>(setup_.console_root),
            SoftwareIdentity{setup_.software_version, setup_.software_commit}) {
   bench_thread_.set_check(setup_.bench_check);
+  if (setup_.results.shared()) api_.set_fleet_queries(make_fleet_queries(setup_.results));
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(), store_.count_runs(),
                store_.count_runs(incomplete));
+  if (outbox_) {
+    spdlog::info("results store: {} ({} runs to send)", setup_.results.url,
+                 outbox_->counts().pending);
+  }
 }
 
 Daemon::~Daemon() {
@@ -40,6 +74,7 @@ Daemon::~Daemon() {
 }
 
 void Daemon::start() {
+  if (outbox_) outbox_->start();
   bench_thread_.start();
   server_ = std::make_unique<HttpServer>(
       io_, setup_.listen_address, setup_.port,
@@ -90,6 +125,8 @@ void Daemon::shutdown(const std::string& reason) {
   for (auto& t : api_threads_) t.join();
   api_threads_.clear();
   server_.reset();
+  // What was not sent stays pending in the index: the next start sends it.
+  if (outbox_) outbox_->stop();
   spdlog::info("stopped ({})", reason);
 }
 

@@ -233,6 +233,14 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       return get ? ApiResponse{200, runs::procedures_json()} : method_not_allowed("GET");
     }
     if (seg.size() == 2 && seg[1] == "specs") return get ? list_specs() : method_not_allowed("GET");
+    if (seg.size() == 3 && seg[1] == "fleet") {
+      if (!get) return method_not_allowed("GET");
+      if (!fleet_) {
+        return api_error(404, "not found",
+                         "no shared results store: wavebenchd runs without --results");
+      }
+      return costly([&] { return fleet_(target); });
+    }
     if (seg.size() == 3 && seg[1] == "bench" && seg[2] == "check")
       return get ? bench_check() : method_not_allowed("GET");
     if (seg.size() == 2 && seg[1] == "runs") {

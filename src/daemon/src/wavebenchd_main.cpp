@@ -21,6 +21,7 @@
 #include "wavebench/daemon/daemon_logging.hpp"
 #include "wavebench/daemon/daemon_options.hpp"
 #include "wavebench/daemon/last_resort_guard.hpp"
+#include "wavebench/fleet/results_config.hpp"
 #include "wavebench/runs/software_version.hpp"
 
 namespace {
@@ -39,6 +40,18 @@ int run(const daemon::DaemonOptions& options) {
     config = bench::bench_config_from_argument(options.config);
   } catch (const std::exception& e) {
     return fail(2, std::string("--config ") + options.config + ": " + e.what());
+  }
+  fleet::ResultsConfig results;
+  if (!options.results_config.empty()) {
+    try {
+      results = fleet::load_results_config(options.results_config);
+      // A missing or readable-by-all password file is a config error, found before the first run.
+      if (results.shared() && !results.password_file.empty()) {
+        (void)fleet::read_password_file(results.password_file);
+      }
+    } catch (const std::exception& e) {
+      return fail(2, std::string("--results ") + options.results_config.string() + ": " + e.what());
+    }
   }
   const auto token_file =
       options.token_file.empty() ? daemon::default_token_file() : options.token_file;
@@ -71,6 +84,7 @@ int run(const daemon::DaemonOptions& options) {
   setup.launcher = daemon::make_executor_run_launcher();
   setup.bench_check = daemon::make_commissioning_check();
   setup.runs_dir = options.runs_dir;
+  setup.results = results;
   setup.specs_dir = options.specs_dir;
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;
@@ -134,6 +148,7 @@ int main(int argc, char** argv) {
   std::string token_file;
   std::string log_dir;
   std::string specs_dir;
+  std::string results_config;
   app.add_option("--config", options.config,
                  "bench config (YAML), or 'sim' for the in-process simulated bench")
       ->required();
@@ -153,6 +168,9 @@ int main(int argc, char** argv) {
   app.add_option("--specs-dir", specs_dir,
                  "product specs a run may name, one NAME.yaml each (default the shipped "
                  "specs of the shipped configs)");
+  app.add_option("--results", results_config,
+                 "where runs go besides the runs folder: a YAML file with `results: {store: "
+                 "postgresql, url, password_file, bench, station}` (a lab's shared store)");
   app.add_flag("--verbose", options.verbose, "debug logging");
   app.add_flag("--allow-remote", options.allow_remote,
                "allow --listen on an address other machines can reach (logged as a warning)");
@@ -185,6 +203,7 @@ int main(int argc, char** argv) {
   options.log_dir = log_dir;
   options.web_root = web_root;
   options.specs_dir = specs_dir;
+  options.results_config = results_config;
   int rc = 1;
   try {
     rc = run(options);

@@ -15,6 +15,8 @@
 #include "wavebench/daemon/http_server.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/fleet/outbox.hpp"
+#include "wavebench/fleet/results_config.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
@@ -39,6 +41,12 @@ struct DaemonSetup {
   std::vector<std::string> allowed_hosts;  // Host names beside IP literals and localhost
   std::size_t live_capacity = 8192;
   std::filesystem::path console_root;  // the console's files; empty: no console
+  // `--results FILE`: with a shared store, every finished run also goes there (the outbox);
+  // sqlite or none: the run folders and index.sqlite only.
+  fleet::ResultsConfig results;
+  // Makes the shared store's connection (on the outbox's thread); empty: PostgreSQL from
+  // `results`. Tests put a stand-in here.
+  fleet::StoreFactory results_store;
 };
 
 class Daemon {
@@ -61,12 +69,16 @@ class Daemon {
   void emergency_stop(const std::string& reason) noexcept;
 
   storage::RunStore& store() { return store_; }
+  // The shared results store's outbox; null without one.
+  fleet::Outbox* outbox() { return outbox_.get(); }
   BenchThread& bench_thread() { return bench_thread_; }
   const DaemonApi& api() const { return api_; }
 
  private:
   DaemonSetup setup_;
   storage::RunStore store_;
+  std::unique_ptr<fleet::Outbox> outbox_;
+  std::unique_ptr<RunLauncher> launcher_;  // setup_'s, wrapped to publish when outbox_ is set
   LiveSampleBuffer live_;
   BenchThread bench_thread_;
   DaemonApi api_;

@@ -23,6 +23,8 @@
 //   GET  /api/runs/{id}/twin?from_s=&to_s=&columns=              the twin's curves (run_trace.hpp)
 //   GET  /api/live?since=&limit=              latest samples
 //   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
+//   GET  /api/fleet/runs|trend|spc?...        the shared results store (fleet_api.hpp); 404
+//                                             without one
 //   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
 //
 // A change needs `Authorization: Bearer <token>` (the CLI) or, from a browser, a live session
@@ -105,6 +107,10 @@ class DaemonApi {
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
   SessionTable& sessions() const { return *sessions_; }
+  // GET /api/fleet/...; set before serving (Daemon does, with a shared results store).
+  void set_fleet_queries(std::function<ApiResponse(const HttpTarget&)> queries) {
+    fleet_ = std::move(queries);
+  }
 
  private:
   ApiResponse route(const ApiRequest& request) const;
@@ -137,6 +143,7 @@ class DaemonApi {
   SoftwareIdentity software_;
   std::shared_ptr<SessionTable> sessions_;
   std::shared_ptr<LiveStreamClients> live_clients_;
+  std::function<ApiResponse(const HttpTarget&)> fleet_;
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.

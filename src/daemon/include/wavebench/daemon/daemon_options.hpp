@@ -1,6 +1,6 @@
 #pragma once
 // wavebenchd's command line: --config BENCH.yaml|sim [--runs DIR] [--listen HOST:PORT]
-// [--token-file F] [--log-dir D] [--specs-dir D].
+// [--token-file F] [--log-dir D] [--specs-dir D] [--results FILE].
 
 #include <filesystem>
 #include <string>
@@ -31,6 +31,7 @@ struct DaemonOptions {
   bool allow_remote = false;
   std::vector<std::string> allowed_hosts;  // Host names accepted beside IP literals, localhost
   std::filesystem::path web_root;          // empty: default_console_root()
+  std::filesystem::path results_config;    // --results; empty: the runs folder only
 };
 
 }  // namespace wavebench::daemon

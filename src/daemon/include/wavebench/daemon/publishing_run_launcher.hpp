@@ -1,0 +1,28 @@
+#pragma once
+// A run launcher that hands every run it finished to the outbox of the shared results store
+// (issue #13): the run is on disk and in the index when launch() returns; the outbox sends it
+// from its own thread. Runs the same checks and runs as the launcher it wraps.
+
+#include <memory>
+
+#include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/fleet/outbox.hpp"
+
+namespace wavebench::daemon {
+
+class PublishingRunLauncher : public RunLauncher {
+ public:
+  PublishingRunLauncher(std::unique_ptr<RunLauncher> inner, fleet::Outbox& outbox);
+
+  runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                          const runs::RunRequest& request,
+                          const runs::ProgressSink& progress) override;
+  void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
+             std::size_t extra_channels, const std::filesystem::path& runs_root) const override;
+
+ private:
+  std::unique_ptr<RunLauncher> inner_;
+  fleet::Outbox& outbox_;
+};
+
+}  // namespace wavebench::daemon

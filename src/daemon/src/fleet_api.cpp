@@ -1,0 +1,109 @@
+#include "wavebench/daemon/fleet_api.hpp"
+
+#include <charconv>
+#include <memory>
+#include <optional>
+#include <stdexcept>
+
+#include "wavebench/fleet/postgres_results_store.hpp"
+
+namespace wavebench::daemon {
+
+namespace {
+
+struct BadQuery : std::invalid_argument {
+  using std::invalid_argument::invalid_argument;
+};
+
+std::optional<std::string> text(const HttpTarget& t, const std::string& key) {
+  const auto it = t.query.find(key);
+  if (it == t.query.end() || it->second.empty()) return std::nullopt;
+  return it->second;
+}
+
+std::optional<double> number(const HttpTarget& t, const std::string& key) {
+  const auto value = text(t, key);
+  if (!value) return std::nullopt;
+  double v = 0;
+  const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), v);
+  if (ec != std::errc() || end != value->data() + value->size()) {
+    throw BadQuery(key + ": got '" + *value + "', expected a number");
+  }
+  return v;
+}
+
+int count(const HttpTarget& t, const std::string& key, int fallback, int most) {
+  const auto value = number(t, key);
+  if (!value) return fallback;
+  if (*value < 0 || *value > most || *value != static_cast<int>(*value)) {
+    throw BadQuery(key + ": got '" + *text(t, key) + "', expected an integer 0.." +
+                   std::to_string(most));
+  }
+  return static_cast<int>(*value);
+}
+
+fleet::FigureQuery figure_query(const HttpTarget& t) {
+  fleet::FigureQuery q;
+  const auto figure = text(t, "figure");
+  const auto model = text(t, "model");
+  if (!figure) throw BadQuery("figure: missing, expected a figure name (e.g. static_te_p2p)");
+  if (!model) throw BadQuery("model: missing, expected the gear model");
+  q.figure = *figure;
+  q.gear_model = *model;
+  q.bench = text(t, "bench");
+  q.direction = text(t, "direction");
+  q.load_nm = number(t, "load");
+  q.from = text(t, "from");
+  q.to = text(t, "to");
+  q.last = count(t, "last", 0, 1000000);
+  return q;
+}
+
+ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
+  const std::string& what = t.segments.at(2);
+  if (what == "runs") {
+    fleet::FleetRunQuery q;
+    q.gear_model = text(t, "model");
+    q.bench = text(t, "bench");
+    q.unit_serial = text(t, "unit");
+    q.procedure = text(t, "procedure");
+    q.verdict = text(t, "verdict");
+    q.from = text(t, "from");
+    q.to = text(t, "to");
+    q.limit = count(t, "limit", 50, 10000);
+    nlohmann::json runs = nlohmann::json::array();
+    for (const auto& r : store.runs(q)) runs.push_back(fleet::to_json(r));
+    return {200, {{"runs", runs}}};
+  }
+  if (what == "trend") {
+    nlohmann::json points = nlohmann::json::array();
+    for (const auto& p : store.trend(figure_query(t))) points.push_back(fleet::to_json(p));
+    return {200, {{"points", points}}};
+  }
+  if (what == "spc") {
+    return {200, fleet::to_json(store.spc(figure_query(t), {number(t, "lsl"), number(t, "usl")}))};
+  }
+  return api_error(404, "not found", "no resource at " + t.path + "; expected runs, trend or spc");
+}
+
+}  // namespace
+
+FleetQueries make_fleet_queries(fleet::ResultsConfig config) {
+  return [config = std::move(config)](const HttpTarget& target) -> ApiResponse {
+    std::unique_ptr<fleet::PostgresResultsStore> store;
+    try {
+      store = std::make_unique<fleet::PostgresResultsStore>(config);
+    } catch (const std::exception& e) {
+      return api_error(503, "results store unreachable", e.what());
+    }
+    try {
+      return answer(*store, target);
+    } catch (const std::invalid_argument& e) {  // BadQuery, and the store's own refusals
+      return api_error(400, "bad request", e.what());
+    } catch (const std::exception& e) {
+      return api_error(503, "results store", e.what());
+    }
+  };
+}
+
+}  // namespace wavebench::daemon

@@ -1,0 +1,25 @@
+#include "wavebench/daemon/publishing_run_launcher.hpp"
+
+namespace wavebench::daemon {
+
+PublishingRunLauncher::PublishingRunLauncher(std::unique_ptr<RunLauncher> inner,
+                                             fleet::Outbox& outbox)
+    : inner_(std::move(inner)), outbox_(outbox) {}
+
+runs::RunOutcome PublishingRunLauncher::launch(bench::Bench& bench, storage::RunStore& store,
+                                               const runs::RunRequest& request,
+                                               const runs::ProgressSink& progress) {
+  // A launch that throws after creating its run leaves it `running` in the index: the next
+  // start marks it incomplete and the outbox's backlog sends it then.
+  auto outcome = inner_->launch(bench, store, request, progress);
+  outbox_.enqueue(outcome.run_id);
+  return outcome;
+}
+
+void PublishingRunLauncher::check(const runs::RunRequest& request,
+                                  const bench::BenchDescription& bench, std::size_t extra_channels,
+                                  const std::filesystem::path& runs_root) const {
+  inner_->check(request, bench, extra_channels, runs_root);
+}
+
+}  // namespace wavebench::daemon
