@@ -6,12 +6,13 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format curl
   libeigen3-dev libfftw3-dev libspdlog-dev libfmt-dev libboost-dev libboost-system-dev
-  libmodbus-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev libssl-dev
+  libmodbus-dev libmatio-dev libhdf5-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev libssl-dev
   libpq-dev postgresql-15
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang libclang-rt-14-dev
   can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
   python3-jsonschema
+  octave python3-h5py
   chromium chromium-driver python3-selenium
 )
 if [[ "${1:-}" == "--with-vm" ]]; then

@@ -109,17 +109,24 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   });
 
   struct ExportArgs {
-    std::string run_id, out, format = "csv";
+    std::string run_id, out, format = "csv", runs;
   };
   auto export_args = std::make_shared<ExportArgs>();
   auto* exp = daemon_subcommand(app, "export", "copy a run's samples and results", options);
   exp->add_option("run_id", export_args->run_id, "run id (see 'wavebench runs')")->required();
-  exp->add_option("--out", export_args->out, "output folder (default ./RUN_ID)");
-  exp->add_option("--format", export_args->format, "samples as csv or json")
-      ->check(CLI::IsMember({"csv", "json"}));
+  exp->add_option("--out", export_args->out,
+                  "output folder (default ./RUN_ID): new, empty, or one an export wrote");
+  // Checked by the command itself: a bad format is a message naming it and exit 2.
+  exp->add_option("--format", export_args->format,
+                  "samples as mat (MATLAB), hdf5, csv or json (default csv)");
+  exp->add_option("--runs", export_args->runs,
+                  "read the run from this run store folder instead of the daemon (no daemon "
+                  "needed)");
   exp->callback([options, export_args, &status] {
-    status.code = daemon::client_export(options->context(), export_args->run_id, export_args->out,
-                                        export_args->format);
+    const auto& a = *export_args;
+    status.code = a.runs.empty()
+                      ? daemon::client_export(options->context(), a.run_id, a.out, a.format)
+                      : daemon::local_export(options->context(), a.runs, a.run_id, a.out, a.format);
   });
 }
 

@@ -13,11 +13,12 @@ TEST_F(CatalogueApiTest, ProceduresServeTheirOptionsSchemaWithoutAToken) {
   const auto reply = client("").get("/api/procedures");
   ASSERT_EQ(reply.status, 200) << reply.body.dump();
   const auto& list = reply.body["procedures"];
-  ASSERT_EQ(list.size(), 4u);
+  ASSERT_EQ(list.size(), 5u);
   EXPECT_EQ(list[0]["name"], "static");
   EXPECT_EQ(list[1]["name"], "dynamic");
   EXPECT_EQ(list[2]["name"], "lost-motion");
   EXPECT_EQ(list[3]["name"], "torsional");
+  EXPECT_EQ(list[4]["name"], "endurance");
   const auto& rpm = list[1]["options"][0];
   EXPECT_EQ(rpm["name"], "input_rpm");
   EXPECT_EQ(rpm["type"], "number");
@@ -116,7 +117,8 @@ TEST_F(CatalogueApiTest, BadHistoryParametersAreRefusedNamingKeyValueAndExpectat
       {"offset=-1", "offset: got '-1', expected an integer from 0"},
       {"verdict=maybe", "verdict: got 'maybe', expected pass, fail, undecided or none"},
       {"procedure=statik",
-       "procedure: got 'statik', expected one of static, dynamic, lost-motion, torsional"},
+       "procedure: got 'statik', expected one of static, dynamic, lost-motion, torsional, "
+       "endurance"},
       {"from=2026-13-01", "from: got '2026-13-01', expected an ISO date"},
       {"to=yesterday", "to: got 'yesterday', expected an ISO date"},
       {"from=2026-02-02&to=2026-02-01", "to: got '2026-02-01', expected a time not before from"},

@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "daemon_fixture.hpp"
+#include "wavebench/daemon/http_target.hpp"
+#include "wavebench/daemon/run_export_download.hpp"
 #include "wavebench/storage/sample_csv.hpp"
 
 namespace wavebench::daemon::testing {
@@ -154,6 +156,52 @@ TEST_F(ClientCommandsTest, ExportWritesTheSamplesAsTheStoreWouldAndTheResults) {
   EXPECT_EQ(samples[249]["index"], 249);
   EXPECT_EQ(client_export(context(), "20990101T000000.000000Z", dir_ / "none", "csv"), 1);
   EXPECT_FALSE(std::filesystem::exists(dir_ / "none"));
+}
+
+TEST_F(ClientCommandsTest, ExportWritesMatAndHdf5FromTheApiPagesIntoItsOwnFolderOnly) {
+  ASSERT_EQ(client_start(context(), "dynamic", {"seconds=0.25"}, true), 0);
+  const auto id = client().get("/api/runs").body["runs"][0]["id"].get<std::string>();
+  const auto out_dir = dir_ / "export";
+  ASSERT_EQ(client_export(context(), id, out_dir, "mat"), 0) << err_.str();
+  EXPECT_NE(out_.str().find("exported 250 samples"), std::string::npos) << out_.str();
+  // An export's own folder takes the next format beside the first.
+  ASSERT_EQ(client_export(context(), id, out_dir, "hdf5"), 0) << err_.str();
+  EXPECT_NE(out_.str().find("samples.h5"), std::string::npos) << out_.str();
+  EXPECT_EQ(read_file(out_dir / "samples.mat").substr(0, 19), "MATLAB 5.0 MAT-file");
+  EXPECT_EQ(read_file(out_dir / "samples.h5").substr(0, 8), std::string("\x89HDF\r\n\x1a\n"));
+  for (const auto& entry : std::filesystem::directory_iterator(out_dir)) {
+    EXPECT_EQ(entry.path().filename().string().find(".tmp"), std::string::npos) << entry.path();
+  }
+  // A folder the export did not write is refused before anything is fetched: exit 2.
+  const auto foreign = dir_ / "foreign";
+  std::filesystem::create_directories(foreign);
+  std::ofstream(foreign / "notes.txt") << "mine\n";
+  EXPECT_EQ(client_export(context(), id, foreign, "hdf5"), 2);
+  EXPECT_NE(err_.str().find("--out"), std::string::npos) << err_.str();
+  EXPECT_FALSE(std::filesystem::exists(foreign / "samples.h5"));
+  EXPECT_EQ(client_export(context(), id, dir_ / "x", "xlsx"), 2);
+  EXPECT_NE(err_.str().find("xlsx"), std::string::npos) << err_.str();
+}
+
+TEST_F(ClientCommandsTest, ExportDownloadFromTheApiIsTheFileTheCommandWrites) {
+  ASSERT_EQ(client_start(context(), "dynamic", {"seconds=0.25"}, true), 0);
+  const auto id = client().get("/api/runs").body["runs"][0]["id"].get<std::string>();
+  ASSERT_EQ(client_export(context(), id, dir_ / "export", "csv"), 0) << err_.str();
+  const auto csv = run_export_download(daemon_->store(), id,
+                                       parse_http_target("/api/runs/" + id + "/export?format=csv"));
+  ASSERT_EQ(csv.status, 200);
+  ASSERT_TRUE(csv.raw_body.has_value());
+  EXPECT_EQ(*csv.raw_body, read_file(dir_ / "export" / "samples.csv"));
+  EXPECT_EQ(csv.content_type, "text/csv; charset=utf-8");
+  const auto mat = run_export_download(daemon_->store(), id,
+                                       parse_http_target("/api/runs/" + id + "/export?format=mat"));
+  ASSERT_TRUE(mat.raw_body.has_value());
+  EXPECT_EQ(mat.raw_body->substr(0, 19), "MATLAB 5.0 MAT-file");
+  // Through the routes: a bad format is 400 naming the key and the value.
+  const auto bad = client().get("/api/runs/" + id + "/export?format=xlsx");
+  EXPECT_EQ(bad.status, 400);
+  EXPECT_NE(bad.error_text().find("format: got 'xlsx'"), std::string::npos) << bad.error_text();
+  EXPECT_EQ(client().get("/api/runs/20990101T000000.000000Z/export?format=csv").status, 404);
 }
 
 TEST_F(ClientCommandsTest, StopAndReset) {

@@ -105,15 +105,16 @@ TEST_P(ProcedureSchema, AValueOutsideTheDescribedRangeIsRefusedNamingTheKey) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Procedures, ProcedureSchema,
-                         ::testing::Values("static", "dynamic", "lost-motion", "torsional"),
+                         ::testing::Values("static", "dynamic", "lost-motion", "torsional",
+                                           "endurance"),
                          [](const auto& param_info) {
                            return param_info.param == "lost-motion" ? std::string("lost_motion")
                                                                     : param_info.param;
                          });
 
 TEST(ProcedureRegistry, NamesTheProceduresAndRefusesAnUnknownOneAsBefore) {
-  EXPECT_EQ(procedure_names(),
-            (std::vector<std::string>{"static", "dynamic", "lost-motion", "torsional"}));
+  EXPECT_EQ(procedure_names(), (std::vector<std::string>{"static", "dynamic", "lost-motion",
+                                                         "torsional", "endurance"}));
   RunRequest request;
   request.procedure = "statik";
   try {
@@ -121,7 +122,8 @@ TEST(ProcedureRegistry, NamesTheProceduresAndRefusesAnUnknownOneAsBefore) {
     FAIL() << "accepted";
   } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(),
-                 "procedure: got 'statik', expected static, dynamic, lost-motion or torsional");
+                 "procedure: got 'statik', expected static, dynamic, lost-motion, torsional or "
+                 "endurance");
   }
 }
 

@@ -54,6 +54,9 @@ def main():
                               "--limit", "lost_motion_arcmin=100"]),
         "static, 2 repeats": (sim, ["static", "--positions", "4", "--loads", "0", "--window", "0.1",
                                    "--no-twin", "--option", "repeats=2"]),
+        "endurance, 2 revolutions, with the twin and the report": (sim, ["endurance", "--option", "input_rpm=600",
+                                                                    "--option", "output_revolutions=2",
+                                                                    "--option", "run_in_s=0.2", "--report"]),
         "torsional, coarse steps, with the report": (sim, ["torsional", "--option", "twist_step_rad=0.0001",
                                                            "--option", "window_s=0.05", "--no-twin",
                                                            "--report"]),
@@ -94,6 +97,7 @@ def main():
         "lost motion": ["lost_motion_fit", "limit_checks"],
         "static, 2 repeats": ["repeats", "static"],
         "torsional, coarse steps, with the report": ["torsional", "report"],
+        "endurance, 2 revolutions, with the twin and the report": ["endurance", "twin", "report"],
     }
     for name, keys in expected_sections.items():
         missing = [k for k in keys if name in produced and k not in produced[name]]

@@ -1,8 +1,11 @@
 #include "wavebench/daemon/client_commands.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <fstream>
 #include <iomanip>
+#include <optional>
+#include <span>
 #include <sstream>
 #include <thread>
 
@@ -10,9 +13,10 @@
 #include "wavebench/daemon/daemon_client.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/exports/export_folder.hpp"
+#include "wavebench/exports/sample_export.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/storage/channel_info.hpp"
-#include "wavebench/storage/sample_csv.hpp"
 
 namespace wavebench::daemon {
 
@@ -234,62 +238,140 @@ int client_runs(const ClientContext& ctx, const RunsFilter& filter) {
   });
 }
 
+namespace {
+
+// The format's name checked before anything is asked or written; nullopt after the message.
+std::optional<exports::ExportFormat> export_format(const ClientContext& ctx,
+                                                   const std::string& format) {
+  const auto f = exports::export_format_from_name(format);
+  if (!f) {
+    *ctx.err << "wavebench: --format: got '" << format << "', expected "
+             << exports::export_format_list() << "\n";
+  }
+  return f;
+}
+
+// The export folder refused before anything is fetched: exit 2, nothing touched.
+bool export_folder_refused(const ClientContext& ctx, const std::filesystem::path& dir) {
+  if (const auto refusal = exports::export_folder_refusal(dir)) {
+    *ctx.err << "wavebench: --out: " << dir.string() << ": " << *refusal << "\n";
+    return true;
+  }
+  return false;
+}
+
+// samples.*, run.json and results.json into `dir`, each written whole.
+int write_export(const ClientContext& ctx, exports::ExportInput input, exports::ExportFormat format,
+                 const std::filesystem::path& dir) {
+  input.sample_json = [](const storage::SyncSample& s,
+                         std::span<const storage::ChannelInfo> extra) {
+    return sample_to_json(s, extra);
+  };
+  exports::prepare_export_folder(dir, input.run_id);
+  const auto summary = exports::export_samples(input, format, dir);
+  storage::write_file_atomically(dir / "run.json", input.run.dump(2) + "\n");
+  if (!input.results.is_null()) {
+    storage::write_file_atomically(dir / "results.json", input.results.dump(2) + "\n");
+  }
+  *ctx.out << "exported " << summary.samples << " samples of run " << input.run_id << " to "
+           << summary.file.string() << "\n";
+  if (summary.torn_tail) *ctx.err << "note: the sample log ends in a torn record (ignored)\n";
+  if (summary.corrupt_record) {
+    *ctx.err << "warning: the sample log has a corrupt record; read up to it\n";
+  }
+  return 0;
+}
+
+// A page of the samples API as the log's page: the same records, the same extra channels.
+storage::SampleLogPage page_from_api(const DaemonClient& client, const std::string& run_id,
+                                     std::uint64_t from, std::size_t count) {
+  const auto reply =
+      client.get("/api/runs/" + url_encode(run_id) + "/samples?from=" + std::to_string(from) +
+                 "&limit=" + std::to_string(count));
+  if (!reply.ok())
+    throw std::runtime_error("samples from " + std::to_string(from) + ": " + reply.error_text());
+  storage::SampleLogPage page;
+  page.from = reply.body.value("from", std::uint64_t{0});
+  if (reply.body.contains("channels") && reply.body["channels"].is_array()) {
+    for (const auto& c : reply.body["channels"])
+      if (c.is_object() && c.value("extra", false) &&
+          page.header.extra_channels.size() < storage::kMaxExtraChannels)
+        page.header.extra_channels.push_back(
+            {c.value("name", std::string()), c.value("unit", std::string())});
+    // Names become CSV columns, JSON keys and variable names: a daemon's reply is checked like
+    // any input.
+    storage::check_extra_channels(page.header.extra_channels);
+  }
+  const auto& list = reply.body["samples"];
+  if (!list.is_array()) throw std::runtime_error("samples: the reply has no sample list");
+  for (const auto& s : list)
+    page.samples.push_back(sample_from_json(s, page.header.extra_channels));
+  page.total_records = reply.body.value("total", std::uint64_t{0});
+  page.torn_tail_bytes = reply.body.value("torn_tail_bytes", std::size_t{0});
+  page.corrupt_record = reply.body.value("corrupt", false);
+  return page;
+}
+
+nlohmann::json json_file_or_null(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) return nullptr;
+  auto j = nlohmann::json::parse(in, nullptr, false);
+  return j.is_discarded() ? nlohmann::json(nullptr) : j;
+}
+
+}  // namespace
+
 int client_export(const ClientContext& ctx, const std::string& run_id,
                   const std::filesystem::path& out_dir, const std::string& format) {
-  if (format != "csv" && format != "json") {
-    *ctx.err << "wavebench: --format: got '" << format << "', expected csv or json\n";
-    return 2;
-  }
+  const auto f = export_format(ctx, format);
+  if (!f) return 2;
+  const auto dir = out_dir.empty() ? std::filesystem::path(run_id) : out_dir;
+  if (export_folder_refused(ctx, dir)) return 2;
   return with_client(ctx, false, [&](const DaemonClient& client) {
     const auto detail = client.get("/api/runs/" + url_encode(run_id));
     if (!detail.ok()) return refused(ctx, "export " + run_id, detail);
-    // Every sample first, then the files: nothing half-written when the daemon goes away.
-    std::vector<storage::SyncSample> samples;
-    std::vector<storage::ChannelInfo> extra;
-    bool torn = false, corrupt = false;
-    for (;;) {
-      const auto page = client.get("/api/runs/" + url_encode(run_id) +
-                                   "/samples?from=" + std::to_string(samples.size()) +
-                                   "&limit=" + std::to_string(kExportPage));
-      if (!page.ok()) return refused(ctx, "export " + run_id, page);
-      const auto& list = page.body["samples"];
-      if (samples.empty() && page.body.contains("channels") && page.body["channels"].is_array()) {
-        extra.clear();
-        for (const auto& c : page.body["channels"])
-          if (c.is_object() && c.value("extra", false) && extra.size() < storage::kMaxExtraChannels)
-            extra.push_back({c.value("name", std::string()), c.value("unit", std::string())});
-        // Names become CSV columns and JSON keys: a daemon's reply is checked like any input.
-        storage::check_extra_channels(extra);
-      }
-      for (const auto& s : list) samples.push_back(sample_from_json(s, extra));
-      torn = page.body.value("torn_tail_bytes", 0) > 0;
-      corrupt = page.body.value("corrupt", false);
-      if (list.empty() || samples.size() >= page.body.value("total", std::size_t{0})) break;
-    }
-    const auto dir = out_dir.empty() ? std::filesystem::path(run_id) : out_dir;
-    std::filesystem::create_directories(dir);
-    std::ostringstream text;
-    std::filesystem::path samples_file;
-    if (format == "csv") {
-      storage::write_samples_csv(samples, text, extra);
-      samples_file = dir / "samples.csv";
-    } else {
-      nlohmann::json array = nlohmann::json::array();
-      for (const auto& s : samples) array.push_back(sample_to_json(s, extra));
-      text << array.dump() << "\n";
-      samples_file = dir / "samples.json";
-    }
-    storage::write_file_atomically(samples_file, text.str());
-    storage::write_file_atomically(dir / "run.json", detail.body["run"].dump(2) + "\n");
-    if (detail.body.contains("results") && !detail.body["results"].is_null()) {
-      storage::write_file_atomically(dir / "results.json", detail.body["results"].dump(2) + "\n");
-    }
-    *ctx.out << "exported " << samples.size() << " samples of run " << run_id << " to "
-             << samples_file.string() << "\n";
-    if (torn) *ctx.err << "note: the sample log ends in a torn record (ignored)\n";
-    if (corrupt) *ctx.err << "warning: the sample log has a corrupt record; read up to it\n";
-    return 0;
+    exports::ExportInput input;
+    input.run_id = run_id;
+    input.run = detail.body["run"];
+    if (detail.body.contains("results")) input.results = detail.body["results"];
+    input.page_records = kExportPage;
+    input.pages = [&client, &run_id](std::uint64_t from, std::size_t count) {
+      return page_from_api(client, run_id, from, count);
+    };
+    return write_export(ctx, std::move(input), *f, dir);
   });
+}
+
+int local_export(const ClientContext& ctx, const std::filesystem::path& runs_dir,
+                 const std::string& run_id, const std::filesystem::path& out_dir,
+                 const std::string& format) {
+  const auto f = export_format(ctx, format);
+  if (!f) return 2;
+  // A run id names a folder directly under the store: nothing that leaves it.
+  const bool plain = !run_id.empty() && run_id != "." && run_id != ".." &&
+                     run_id.find('/') == std::string::npos &&
+                     run_id.find('\0') == std::string::npos;
+  const auto run_dir = runs_dir / run_id;
+  std::error_code ec;
+  if (!plain || !std::filesystem::is_regular_file(run_dir / "samples.wbs", ec)) {
+    *ctx.err << "wavebench: run_id: got '" << run_id << "', expected a run of " << runs_dir.string()
+             << " (a folder holding samples.wbs; see 'wavebench runs')\n";
+    return 2;
+  }
+  const auto dir = out_dir.empty() ? std::filesystem::path(run_id) : out_dir;
+  if (export_folder_refused(ctx, dir)) return 2;
+  try {
+    exports::ExportInput input;
+    input.run_id = run_id;
+    input.run = json_file_or_null(run_dir / "status.json");
+    input.results = json_file_or_null(run_dir / "results.json");
+    input.page_records = kExportPage;
+    input.pages = exports::sample_log_pages(run_dir / "samples.wbs");
+    return write_export(ctx, std::move(input), *f, dir);
+  } catch (const std::exception& e) {
+    *ctx.err << "wavebench: export " << run_id << ": " << e.what() << "\n";
+    return 1;
+  }
 }
 
 }  // namespace wavebench::daemon

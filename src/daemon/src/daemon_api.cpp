@@ -13,6 +13,7 @@
 #include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
+#include "wavebench/daemon/run_export_download.hpp"
 #include "wavebench/daemon/run_history_query.hpp"
 #include "wavebench/daemon/run_trace.hpp"
 #include "wavebench/daemon/sample_json.hpp"
@@ -261,6 +262,12 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
         return seg[3] == "trace" ? run_trace(store_, seg[2], target)
                                  : run_twin_trace(store_, seg[2], target);
       });
+    }
+    if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "export") {
+      if (!get) return method_not_allowed("GET");
+      if (!looks_like_run_id(seg[2]))
+        return api_error(404, "not found", "run '" + seg[2] + "' is not a run id");
+      return costly([&] { return run_export_download(store_, seg[2], target); });
     }
     if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
       if (!get) return method_not_allowed("GET");

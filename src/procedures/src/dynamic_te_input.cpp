@@ -39,6 +39,8 @@ DynamicTeInput dynamic_te_input(std::span<const storage::SyncSample> samples) {
       first = false;
     }
     last = s.receive_time_ns;
+    if (in.time_s.empty()) in.first_receive_time_ns = t0;
+    in.last_receive_time_ns = last;
     in.time_s.push_back(1e-9 * static_cast<double>(s.receive_time_ns - t0));
     in.theta_in_rad.push_back(s.theta_in_rad);
     in.theta_out_rad.push_back(s.theta_out_rad);

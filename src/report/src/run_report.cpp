@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/report/endurance_section.hpp"
 #include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_tables.hpp"
 #include "wavebench/report/torsional_section.hpp"
@@ -230,6 +231,22 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     HtmlTable budget = torsional_budget_table();
     add_torsional_budget_rows(budget, run);
     add_table(page, budget);
+  }
+
+  // Endurance: the trend per output revolution.
+  if (const json* endurance = endurance_section(run.results)) {
+    page.heading("Endurance");
+    const json* diagnosis = nullptr;
+    if (const auto t = run.results.find("twin"); t != run.results.end() && t->is_object()) {
+      if (const auto d = t->find("diagnosis"); d != t->end() && d->is_object()) diagnosis = &*d;
+    }
+    if (auto fig = endurance_trend_figure(*endurance, diagnosis)) {
+      report.plots.push_back(write_plot(*fig, out, "endurance.png", 800));
+      page.image("endurance.png",
+                 "TE, mesh lines, brake temperature and twin residual per output "
+                 "revolution");
+    }
+    add_table(page, endurance_trend_table(*endurance));
   }
 
   // The twin.

@@ -92,6 +92,8 @@ nlohmann::json DynamicTeOutcome::to_json() const {
   j["skipped_out_of_order"] = skipped_out_of_order;
   j["skipped_not_advancing"] = skipped_not_advancing;
   j["missed_cycles"] = missed_cycles;
+  j["record"] = {{"first_receive_time_ns", first_receive_time_ns},
+                 {"last_receive_time_ns", last_receive_time_ns}};
   j["teeth"] = {
       {"z_flex", teeth.z_flex}, {"z_circ", teeth.z_circ}, {"wave_number", teeth.wave_number}};
   const std::size_t n = result.te_arcsec.size();
@@ -188,6 +190,8 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   out.skipped_out_of_order = input.skipped_out_of_order;
   out.skipped_not_advancing = input.skipped_not_advancing;
   out.missed_cycles = input.missed_cycles;
+  out.first_receive_time_ns = input.first_receive_time_ns;
+  out.last_receive_time_ns = input.last_receive_time_ns;
   out.teeth = gear_teeth(d.twin_gear, d.sense.ratio);
   const auto predicted = predicted_components(d.twin_gear, out.teeth);
   procedures::DynamicTeOptions analysis;

@@ -14,7 +14,7 @@ ParsedProcedure parse_as(const nlohmann::json& options) {
   return {Procedure(o), o.to_json(), 1};
 }
 
-const std::array<ProcedureEntry, 4> kProcedures{{
+const std::array<ProcedureEntry, 5> kProcedures{{
     {"static", "Static TE",
      "Transmission error at equally spaced output positions, settled, forward and reverse, at "
      "each brake load (bench.md §4)",
@@ -32,6 +32,10 @@ const std::array<ProcedureEntry, 4> kProcedures{{
      "+T_max, unloading to −T_max, back to zero; hysteresis loss, lost motion, backlash, "
      "K1/K2/K3 and T1/T2, each with its uncertainty",
      &TorsionalOptions::schema, &parse_as<TorsionalOptions, TorsionalProcedure>},
+    {"endurance", "Endurance",
+     "Hours at constant input speed and brake load: TE mean, p2p and RMS, the mesh lines and the "
+     "brake temperature of every output revolution, as a trend (wear, run-in)",
+     &EnduranceOptions::schema, &parse_as<EnduranceOptions, EnduranceProcedure>},
 }};
 
 }  // namespace

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "wavebench/runs/dynamic_te_procedure.hpp"
+#include "wavebench/runs/endurance_procedure.hpp"
 #include "wavebench/runs/lost_motion_procedure.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/static_te_procedure.hpp"
@@ -17,8 +18,8 @@
 
 namespace wavebench::runs {
 
-using AnyProcedure =
-    std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure, TorsionalProcedure>;
+using AnyProcedure = std::variant<StaticTeProcedure, DynamicTeProcedure, LostMotionProcedure,
+                                  TorsionalProcedure, EnduranceProcedure>;
 
 struct ParsedProcedure {
   AnyProcedure procedure;
@@ -50,7 +51,7 @@ std::vector<OptionSpec> procedure_options(const ProcedureEntry& entry);
 // entry.parse() with `repeats` taken off first (integer 1..kMaxRepeats, default 1). Throws
 // std::invalid_argument naming the key, the value and what was expected.
 ParsedProcedure parse_procedure(const ProcedureEntry& entry, const nlohmann::json& options);
-// "static, dynamic, lost-motion or torsional": for the refusal of an unknown name.
+// "static, dynamic, lost-motion, torsional or endurance": for the refusal of an unknown name.
 std::string procedure_name_list();
 
 }  // namespace wavebench::runs

@@ -55,6 +55,8 @@ ProcedureResult run_once(AnyProcedure& procedure, bench::Bench& bench,
     r.json["lost_motion_fit"] = l->run(bench, progress).to_json();
   } else if (auto* t = std::get_if<TorsionalProcedure>(&procedure)) {
     r.json["torsional"] = t->run(bench, progress).to_json();
+  } else if (auto* e = std::get_if<EnduranceProcedure>(&procedure)) {
+    r.json["endurance"] = e->run(bench, progress).to_json();
   }
   return r;
 }

@@ -9,6 +9,7 @@ const FALLBACK = [
   { name: 'dynamic', title: 'Dynamic TE', options: [] },
   { name: 'lost-motion', title: 'Lost motion', options: [] },
   { name: 'torsional', title: 'Torsional stiffness (locked output)', options: [] },
+  { name: 'endurance', title: 'Endurance', options: [] },
 ];
 
 function el(tag, attrs = {}, text) {

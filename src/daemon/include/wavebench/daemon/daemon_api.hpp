@@ -19,6 +19,8 @@
 //   GET  /api/runs/{id}                       record + results.json
 //   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
 //                                             page_gaps counts gaps within it)
+//   GET  /api/runs/{id}/export?format=mat|hdf5|csv|json   the samples as a file to download
+//                                             (run_export_download.hpp)
 //   GET  /api/runs/{id}/trace?channels=&from_s=&to_s=&columns=   min/max per column (run_trace.hpp)
 //   GET  /api/runs/{id}/twin?from_s=&to_s=&columns=              the twin's curves (run_trace.hpp)
 //   GET  /api/live?since=&limit=              latest samples

@@ -5,6 +5,7 @@
 // mesh, their harmonics, the twin's components) and the twin's components above Nyquist listed
 // as aliased.
 
+#include <cstdint>
 #include <nlohmann/json.hpp>
 #include <vector>
 
@@ -38,6 +39,8 @@ struct DynamicTeOutcome {
   std::size_t samples = 0;  // recorded
   std::size_t skipped_invalid = 0, skipped_out_of_order = 0, missed_cycles = 0;
   std::size_t skipped_not_advancing = 0;
+  // The analysed record in samples.wbs: receive_time_ns of its first and last sample.
+  std::int64_t first_receive_time_ns = 0, last_receive_time_ns = 0;
   procedures::GearTeeth teeth;
   // results.json "dynamic": the analysis (peaks, aliased, mean/p2p/RMS) with the sample
   // counts, the order spectrum and a TE trace decimated for plotting.
