@@ -12,35 +12,18 @@
 #include <string_view>
 #include <system_error>
 
+#include "wavebench/storage/owned_folder.hpp"
+
 namespace wavebench::exports {
 namespace fs = std::filesystem;
 
 namespace {
 
-constexpr const char* kWrittenBy = "wavebench export";
 constexpr std::array<std::string_view, 7> kOwnFiles{kExportMarkerFile, "samples.mat",  "samples.h5",
                                                     "samples.csv",     "samples.json", "run.json",
                                                     "results.json"};
-
-bool own_file_name(const std::string& name) {
-  for (const auto own : kOwnFiles) {
-    if (name == own) return true;
-  }
-  return false;
-}
-
-bool has_marker(const fs::path& dir) {
-  const fs::path marker = dir / kExportMarkerFile;
-  std::error_code ec;
-  if (!fs::is_regular_file(fs::symlink_status(marker, ec)) || fs::file_size(marker, ec) > 4096) {
-    return false;
-  }
-  std::ifstream in(marker);
-  std::stringstream text;
-  text << in.rdbuf();
-  const auto j = nlohmann::json::parse(text.str(), nullptr, false);
-  return j.is_object() && j.value("written_by", "") == kWrittenBy;
-}
+// Temporary files of an export that was killed are its own too.
+constexpr storage::FolderOwner kOwner{kExportMarkerFile, "wavebench export", kOwnFiles, true};
 
 [[noreturn]] void fail(const std::string& what, const fs::path& path) {
   throw std::system_error(errno, std::generic_category(), what + " " + path.string());
@@ -49,27 +32,7 @@ bool has_marker(const fs::path& dir) {
 }  // namespace
 
 std::optional<std::string> export_folder_refusal(const fs::path& dir) {
-  std::error_code ec;
-  const fs::file_status status = fs::symlink_status(dir, ec);
-  if (!fs::exists(status)) return std::nullopt;
-  if (fs::is_symlink(status)) return "it is a symbolic link; name a folder";
-  if (!fs::is_directory(status)) return "it is a file, not a folder; nothing was changed";
-  if (fs::is_empty(dir, ec)) return std::nullopt;
-  if (!has_marker(dir)) {
-    return "the folder is not empty and was not written by wavebench export (no " +
-           std::string(kExportMarkerFile) + "); name a new or empty folder";
-  }
-  for (const auto& entry : fs::directory_iterator(dir, ec)) {
-    const std::string name = entry.path().filename().string();
-    // Temporary files of an export that was killed are its own too.
-    const bool temp = name.size() > 1 && name[0] == '.' && name.find(".tmp") != std::string::npos;
-    if ((!own_file_name(name) && !temp) || !fs::is_regular_file(entry.symlink_status(ec))) {
-      return "the folder holds '" + name +
-             "', which wavebench export did not write; move it away or name another folder";
-    }
-  }
-  if (ec) return "the folder cannot be read: " + ec.message();
-  return std::nullopt;
+  return storage::owned_folder_refusal(dir, kOwner);
 }
 
 void prepare_export_folder(const fs::path& dir, const std::string& run_id) {
@@ -77,10 +40,7 @@ void prepare_export_folder(const fs::path& dir, const std::string& run_id) {
     throw std::runtime_error("--out " + dir.string() + ": " + *refusal);
   }
   fs::create_directories(dir);
-  const nlohmann::json marker = {{"written_by", kWrittenBy}, {"format", 1}, {"run_id", run_id}};
-  std::ofstream out(dir / kExportMarkerFile);
-  out << marker.dump() << "\n";
-  if (!out) throw std::runtime_error("cannot write " + (dir / kExportMarkerFile).string());
+  storage::write_owner_marker(dir, kOwner, {{"run_id", run_id}});
 }
 
 PendingFile::PendingFile(fs::path target)
