@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "../latencies.hpp"
 #include "postgres_server.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
 
@@ -23,15 +24,7 @@ double ms_since(Clock::time_point t0) {
   return std::chrono::duration<double, std::milli>(Clock::now() - t0).count();
 }
 
-struct Latencies {
-  std::vector<double> ms;
-  double quantile(double q) {
-    std::sort(ms.begin(), ms.end());
-    return ms.empty() ? 0
-                      : ms[std::min(ms.size() - 1,
-                                    static_cast<std::size_t>(q * static_cast<double>(ms.size())))];
-  }
-};
+using benchmarks::Latencies;
 
 // A run as summarise_run would give it, without a run folder: index row and figures.
 fleet::RunSummary synthetic(int i, std::mt19937& rng) {

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "../latencies.hpp"
 #include "wavebench/daemon/daemon.hpp"
 #include "wavebench/storage/run_store.hpp"
 
@@ -25,15 +26,7 @@ using namespace wavebench;
 using Clock = std::chrono::steady_clock;
 namespace fs = std::filesystem;
 
-struct Latencies {
-  std::vector<double> ms;
-  double quantile(double q) {
-    std::sort(ms.begin(), ms.end());
-    return ms.empty() ? 0
-                      : ms[std::min(ms.size() - 1,
-                                    static_cast<std::size_t>(q * static_cast<double>(ms.size())))];
-  }
-};
+using benchmarks::Latencies;
 
 // A stand-in that never runs anything: the benchmark only reads.
 class NoRuns : public daemon::RunLauncher {
