@@ -1,12 +1,17 @@
-// A trend and an SPC query over the runs of one gear model in a shared store of N runs (10,000
-// by default: 4 benches, 2 gear models, every procedure's figures), on a PostgreSQL 15 server
-// this benchmark starts itself. Publishing is set-up (timed once, printed), the queries are
-// the measurement: p50/p99/max over REPEATS. Measures, never asserts.
-// Usage: fleet_benchmark [RUNS=10000] [REPEATS=50]
+// A trend and an SPC query over the runs of one gear model in a results store of N runs
+// (10,000 by default: 4 benches, 2 gear models, every procedure's figures), on a PostgreSQL 15
+// server this benchmark starts itself, or (STORE=sqlite) a bench's own SQLite store in a
+// temporary file. Publishing is set-up (timed once, printed), the queries are the measurement:
+// p50/p99/max over REPEATS. Measures, never asserts.
+// Usage: fleet_benchmark [RUNS=10000] [REPEATS=50] [STORE=postgresql|sqlite]
+#include <unistd.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <memory>
 #include <random>
 #include <string>
 #include <vector>
@@ -14,6 +19,7 @@
 #include "../latencies.hpp"
 #include "postgres_server.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
+#include "wavebench/fleet/sqlite_results_store.hpp"
 
 namespace {
 
@@ -69,11 +75,24 @@ fleet::RunSummary synthetic(int i, std::mt19937& rng) {
 int main(int argc, char** argv) {
   const int runs = argc > 1 ? std::atoi(argv[1]) : 10000;
   const int repeats = argc > 2 ? std::atoi(argv[2]) : 50;
+  const std::string kind = argc > 3 ? argv[3] : "postgresql";
   try {
-    fleet::testing::PostgresServer server;
-    server.create_database("wavebench");
-    const auto config = server.config("wavebench");
-    fleet::PostgresResultsStore store(config);
+    std::unique_ptr<fleet::testing::PostgresServer> server;
+    std::unique_ptr<fleet::ResultsStore> own;
+    std::filesystem::path sqlite_dir;
+    if (kind == "sqlite") {
+      sqlite_dir = std::filesystem::temp_directory_path() /
+                   ("wavebench-fleet-benchmark." + std::to_string(::getpid()));
+      std::filesystem::remove_all(sqlite_dir);
+      std::filesystem::create_directories(sqlite_dir);
+      own = std::make_unique<fleet::SqliteResultsStore>(sqlite_dir / "index.sqlite");
+    } else {
+      server = std::make_unique<fleet::testing::PostgresServer>();
+      server->create_database("wavebench");
+      own = std::make_unique<fleet::PostgresResultsStore>(server->config("wavebench"));
+    }
+    fleet::ResultsStore& store = *own;
+    std::printf("store: %s\n", kind == "sqlite" ? "sqlite (a bench's own)" : "postgresql");
     std::mt19937 rng(42);
     auto t0 = Clock::now();
     for (int i = 0; i < runs; ++i) store.publish(synthetic(i, rng));
@@ -113,6 +132,8 @@ int main(int argc, char** argv) {
       std::printf("%-50s %5zu points  p50 %7.2f ms  p99 %7.2f ms  max %7.2f ms\n", c.name, points,
                   lat.quantile(0.5), lat.quantile(0.99), lat.quantile(1.0));
     }
+    own.reset();
+    if (!sqlite_dir.empty()) std::filesystem::remove_all(sqlite_dir);
   } catch (const std::exception& e) {
     std::fprintf(stderr, "fleet_benchmark: %s\n", e.what());
     return 1;

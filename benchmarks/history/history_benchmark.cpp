@@ -17,6 +17,7 @@
 #include <vector>
 
 #include "../latencies.hpp"
+#include "../read_only_launcher.hpp"
 #include "wavebench/daemon/daemon.hpp"
 #include "wavebench/storage/run_store.hpp"
 
@@ -28,16 +29,7 @@ namespace fs = std::filesystem;
 
 using benchmarks::Latencies;
 
-// A stand-in that never runs anything: the benchmark only reads.
-class NoRuns : public daemon::RunLauncher {
- public:
-  runs::RunOutcome launch(bench::Bench&, storage::RunStore&, const runs::RunRequest&,
-                          const runs::ProgressSink&) override {
-    throw std::invalid_argument("history benchmark: no runs");
-  }
-  void check(const runs::RunRequest&, const bench::BenchDescription&, std::size_t,
-             const fs::path&) const override {}
-};
+using NoRuns = benchmarks::ReadOnlyLauncher;
 
 void exec(sqlite3* db, const std::string& sql) {
   char* message = nullptr;

@@ -1,9 +1,11 @@
 // `wavebench fleet runs|trend|spc`: the lab's shared results store (issue #13), read directly
-// with the daemon's `--results FILE` (or $WAVEBENCH_RESULTS_CONFIG). Tables on stdout, or JSON
-// with --json. Exit 2 for a bad config or argument, 1 when the store cannot be reached.
+// with the daemon's `--results FILE` (or $WAVEBENCH_RESULTS_CONFIG), or a lone bench's own
+// with `--runs DIR`. Tables on stdout, or JSON with --json. Exit 2 for a bad config or
+// argument, 1 when the store cannot be reached.
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -13,13 +15,14 @@
 #include "commands.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
+#include "wavebench/fleet/sqlite_results_store.hpp"
 #include "wavebench/report/figure.hpp"
 
 namespace wavebench::cli {
 namespace {
 
 struct FleetArgs {
-  std::string results;
+  std::string results, runs;
   std::string model, bench, unit, procedure, verdict, from, to, direction, figure;
   std::string load_nm, lsl, usl;  // numbers, parsed with their option's name in errors
   int limit = 50;
@@ -206,23 +209,41 @@ void print_spc(fleet::ResultsStore& store, const FleetArgs& args) {
   }
 }
 
+// --runs DIR: the bench's own store in DIR/index.sqlite, read only (the daemon writes it).
 template <typename Print>
 int with_store(const FleetArgs& args, Print print) {
   fleet::ResultsConfig config;
-  try {
-    const std::string file = results_file(args);
-    config = fleet::load_results_config(file);
-    if (!config.shared()) {
-      throw std::invalid_argument("results.store: got 'sqlite' in " + file +
-                                  ", expected postgresql (a shared store to query)");
-    }
-  } catch (const std::exception& e) {
-    std::cerr << "wavebench fleet: " << e.what() << "\n";
+  if (!args.runs.empty() && !args.results.empty()) {
+    std::cerr << "wavebench fleet: --runs and --results: both given, expected one store\n";
     return 2;
   }
-  std::unique_ptr<fleet::PostgresResultsStore> store;
+  if (args.runs.empty()) {
+    try {
+      const std::string file = results_file(args);
+      config = fleet::load_results_config(file);
+      if (!config.shared()) {
+        throw std::invalid_argument("results.store: got 'sqlite' in " + file +
+                                    ", expected postgresql (a shared store to query), or "
+                                    "--runs DIR for a bench's own store");
+      }
+    } catch (const std::exception& e) {
+      std::cerr << "wavebench fleet: " << e.what() << "\n";
+      return 2;
+    }
+  } else if (!std::filesystem::is_regular_file(std::filesystem::path(args.runs) / "index.sqlite")) {
+    std::cerr << "wavebench fleet: --runs: got '" << args.runs
+              << "', expected a run store folder (holding index.sqlite)\n";
+    return 2;
+  }
+  std::unique_ptr<fleet::ResultsStore> store;
   try {
-    store = std::make_unique<fleet::PostgresResultsStore>(config);
+    if (args.runs.empty()) {
+      store = std::make_unique<fleet::PostgresResultsStore>(config);
+    } else {
+      store = std::make_unique<fleet::SqliteResultsStore>(
+          std::filesystem::path(args.runs) / "index.sqlite",
+          fleet::SqliteResultsStore::Access::kReadOnly);
+    }
   } catch (const std::exception& e) {
     std::cerr << "wavebench fleet: " << e.what() << "\n";
     return 1;
@@ -243,6 +264,8 @@ void add_common(CLI::App* cmd, FleetArgs& args) {
   cmd->add_option("--results", args.results,
                   "results config (results: {store: postgresql, url, password_file}); default "
                   "$WAVEBENCH_RESULTS_CONFIG");
+  cmd->add_option("--runs", args.runs,
+                  "a bench's own store instead: its run store folder (wavebenchd --runs DIR)");
   cmd->add_option("--bench", args.bench, "only this bench");
   cmd->add_option("--from", args.from, "started at or after (ISO 8601, e.g. 2026-11-01)");
   cmd->add_option("--to", args.to, "started at or before (ISO 8601)");

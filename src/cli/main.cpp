@@ -3,9 +3,11 @@
 #include <iostream>
 
 #include "commands.hpp"
+#include "wavebench/runs/allocator_policy.hpp"
 #include "wavebench/runs/software_version.hpp"
 
 int main(int argc, char** argv) {
+  wavebench::runs::use_allocator_policy();
   CLI::App app{"wavebench - strain-wave gear test bench and digital twin"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("wavebench ") +

@@ -72,8 +72,11 @@ class Daemon:
         except urllib.error.HTTPError as e:
             return e.code, json.loads(e.read() or b"{}")
 
-    def run(self, procedure, options):
-        status, body = self.request("POST", "/api/runs", {"procedure": procedure, "options": options})
+    def run(self, procedure, options, spec=None):
+        request = {"procedure": procedure, "options": options}
+        if spec:
+            request["spec"] = spec
+        status, body = self.request("POST", "/api/runs", request)
         if status not in (201, 202):
             raise RuntimeError(f"start {procedure}: {status} {body}")
         run_id = body.get("run_id")

@@ -5,6 +5,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <fstream>
 #include <future>
 #include <stdexcept>
@@ -159,6 +160,39 @@ TEST(SampleJson, RoundTripsAndMissingChannelsAreNull) {
   EXPECT_EQ(back.input_speed_rad_s, s.input_speed_rad_s);
   EXPECT_EQ(back.missed_before, 2u);
   EXPECT_THROW(sample_from_json({{"index", 1}}), std::invalid_argument);
+}
+
+TEST(SampleJson, TextEqualsTheObjectsDump) {
+  // The samples page writes its samples as text (append_sample_json): parsed, the same JSON as
+  // sample_to_json, number types included, with extra channels, absent values and NaN.
+  const std::vector<storage::ChannelInfo> extra = {{"encoder \"B\"", "rad"}, {"t2", "N*m"}};
+  std::vector<std::string> keys;
+  for (const auto& c : extra) keys.push_back(nlohmann::json(c.name).dump());
+  for (int k = 0; k < 4; ++k) {
+    storage::SyncSample s;
+    s.index = 18'446'744'073'709'551'615ULL - static_cast<std::uint64_t>(k);
+    s.sync_counter = 240;
+    s.flags = k == 1 ? 0u : storage::kAllChannelsValid & ~(1u << k);
+    s.receive_time_ns = -1'234'567'890'123 + k;
+    s.theta_in_rad = 0.1 + 1e-12;
+    s.theta_out_rad = k == 2 ? std::nan("") : -3.0e-3;
+    s.input_speed_rad_s = 1e300;
+    s.torque_nm = 60;  // whole: stays a float
+    s.brake_current_a = 5e-324;
+    s.brake_torque_nm = -0.0;
+    s.missed_before = 4'000'000'000u;
+    s.extra[0] = 1.5;
+    s.extra[1] = 2;
+    s.extra_valid = k == 3 ? 1u : 3u;
+    std::string text;
+    append_sample_json(text, s, keys);
+    const auto parsed = nlohmann::json::parse(text);
+    const auto want = nlohmann::json::parse(sample_to_json(s, extra).dump());  // as sent
+    EXPECT_EQ(parsed, want) << text << "\n" << want.dump();
+    for (const auto& [key, value] : want.items()) {
+      EXPECT_EQ(parsed[key].type(), value.type()) << key;
+    }
+  }
 }
 
 TEST(DaemonOptions, ListenAddress) {

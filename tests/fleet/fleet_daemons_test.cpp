@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "daemon_process.hpp"
+#include "daemon_runs.hpp"
 #include "postgres_server.hpp"
 #include "synthetic_runs.hpp"
 #include "wavebench/daemon/daemon_client.hpp"
@@ -28,25 +29,9 @@ using namespace std::chrono_literals;
 using daemon::DaemonClient;
 using daemon::testing::DaemonProcess;
 
+using testing::eventually;
+
 constexpr const char* kToken = "fedcba9876543210fedcba9876543210";
-
-// A short static run on the simulated bench, judged against the simulated unit's spec.
-const nlohmann::json kShortRun = {
-    {"procedure", "static"},
-    {"options",
-     {{"positions", 4}, {"loads_nm", {0}}, {"move_speed_rad_s", 250}, {"window_s", 0.2}}},
-    {"spec", "sim-seed004"},
-    {"twin", false},
-    {"report", false}};
-
-bool eventually(const std::function<bool()>& done, std::chrono::seconds limit = 180s) {
-  const auto deadline = std::chrono::steady_clock::now() + limit;
-  while (std::chrono::steady_clock::now() < deadline) {
-    if (done()) return true;
-    std::this_thread::sleep_for(50ms);
-  }
-  return done();
-}
 
 class FleetDaemons : public ::testing::Test {
  protected:
@@ -78,20 +63,9 @@ class FleetDaemons : public ::testing::Test {
   DaemonClient client(const std::string& bench) {
     return {"http://127.0.0.1:" + std::to_string(ports_.at(bench)), kToken};
   }
-  // Starts a run and waits until the daemon has finished it; its id.
   std::string run_to_the_end(const std::string& bench) {
     auto c = client(bench);
-    const auto started = c.post("/api/runs", kShortRun);
-    EXPECT_EQ(started.status, 201) << started.body.dump();
-    if (started.status != 201) return {};
-    const auto id = started.body["run_id"].get<std::string>();
-    EXPECT_TRUE(eventually([&] {
-      const auto status = c.get("/api/status");
-      const auto& last = status.body.value("last_run", nlohmann::json::object());
-      return status.ok() && !status.body.value("run", nlohmann::json()).is_object() &&
-             last.is_object() && last.value("id", "") == id;
-    })) << c.get("/api/status").body.dump();
-    return id;
+    return testing::run_to_the_end(c);
   }
 
   std::unique_ptr<testing::PostgresServer> server_;
@@ -170,6 +144,22 @@ TEST_F(FleetDaemons, ServerStoppedMidRunTheRunArrivesOnceAfterItReturns) {
   const auto id = run_to_the_end("bench-a");
   ASSERT_FALSE(id.empty());
   EXPECT_TRUE(std::filesystem::exists(dir_ / "bench-a" / id / "results.json"));
+  // GET /api/status tells the run waits, why, and when the next attempt is.
+  auto api = client("bench-a");
+  nlohmann::json away;
+  ASSERT_TRUE(eventually(
+      [&] {
+        away = api.get("/api/status").body.value("results_store", nlohmann::json());
+        return away.is_object() && away["pending"].get<int>() >= 1 &&
+               away["last_error"].is_string();
+      },
+      30s))
+      << away.dump();
+  EXPECT_EQ(away["kind"], "postgresql");
+  EXPECT_TRUE(away["next_attempt_in_s"].is_number()) << away.dump();
+  EXPECT_LE(away["next_attempt_in_s"].get<double>(), 0.2 + 1e-9);  // retry_max: 200 ms
+  EXPECT_EQ(away.dump().find("wavebench-test-secret"), std::string::npos) << away.dump();
+
   server_->start();
   const auto c = server_->config("wavebench");
   FleetRunQuery q;
@@ -183,6 +173,16 @@ TEST_F(FleetDaemons, ServerStoppedMidRunTheRunArrivesOnceAfterItReturns) {
       },
       60s))
       << a->stderr_text();
+  nlohmann::json back;
+  ASSERT_TRUE(eventually(
+      [&] {
+        back = api.get("/api/status").body.value("results_store", nlohmann::json());
+        return back.is_object() && back["pending"] == 0;
+      },
+      30s))
+      << back.dump();
+  EXPECT_TRUE(back["last_published_at"].is_string()) << back.dump();
+  EXPECT_TRUE(back["next_attempt_in_s"].is_null()) << back.dump();
   // Stopped and started again, the daemon sends nothing twice.
   a->signal(SIGTERM);
   a->wait();

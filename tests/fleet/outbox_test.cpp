@@ -54,12 +54,51 @@ TEST(Outbox, RunFinishedWhileTheStoreIsAwayArrivesWhenItReturns) {
   const auto id = testing::add_synthetic_run(store, {});
   outbox.enqueue(id);
   EXPECT_FALSE(outbox.wait_idle(200ms));
-  EXPECT_GT(outbox.counts().failures, 0u);
-  EXPECT_EQ(outbox.counts().pending, 1u);
+  const auto away = outbox.counts();
+  EXPECT_GT(away.failures, 0u);
+  EXPECT_EQ(away.pending, 1u);
+  EXPECT_NE(away.last_error.find("fake store"), std::string::npos) << away.last_error;
+  ASSERT_TRUE(away.next_attempt);  // waiting on a retry, at most retry_max away
+  EXPECT_LE(*away.next_attempt - std::chrono::steady_clock::now(), std::chrono::milliseconds(20));
+  EXPECT_TRUE(away.last_published_at.empty());
   server->down = false;
   ASSERT_TRUE(outbox.wait_idle(10s));
+  const auto back = outbox.counts();
+  EXPECT_FALSE(back.next_attempt);
+  EXPECT_EQ(back.last_published_at.size(), 20u) << back.last_published_at;  // ISO 8601, UTC
   std::lock_guard lock(server->mutex);
   EXPECT_EQ(server->inserted["bench-a/" + id], 1);
+}
+
+// Each kind of store has its ledger: a bench that summarised its runs into its own store and
+// then joins a shared one sends the shared one every run.
+TEST(Outbox, AnotherLedgerSendsEveryRunAgain) {
+  const auto dir = testing::fresh_dir("OutboxLedger");
+  storage::RunStore store(dir, "test");
+  const auto a = testing::add_synthetic_run(store, {});
+  const auto b = testing::add_synthetic_run(store, {});
+  auto own = std::make_shared<testing::FakeServer>();
+  auto shared = std::make_shared<testing::FakeServer>();
+  {
+    auto options = quick("bench-a");
+    options.ledger = "fleet_own_published";
+    Outbox outbox(store, testing::fake_factory(own), options);
+    EXPECT_EQ(outbox.counts().pending, 2u);
+    outbox.start();
+    ASSERT_TRUE(outbox.wait_idle(10s));
+  }
+  Outbox outbox(store, testing::fake_factory(shared), quick("bench-a"));
+  EXPECT_EQ(outbox.counts().pending, 2u);
+  outbox.start();
+  ASSERT_TRUE(outbox.wait_idle(10s));
+  {
+    std::lock_guard lock(shared->mutex);
+    EXPECT_EQ(shared->rows.size(), 2u);
+    EXPECT_EQ(shared->rows.count("bench-a/" + a) + shared->rows.count("bench-a/" + b), 2u);
+  }
+  auto bad = quick("bench-a");
+  bad.ledger = "runs; DROP TABLE runs";
+  EXPECT_THROW(Outbox(store, testing::fake_factory(own), bad), std::invalid_argument);
 }
 
 TEST(Outbox, WhatWasNotSentIsSentByTheNextStartAndNothingTwice) {

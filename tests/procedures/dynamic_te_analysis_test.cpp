@@ -105,10 +105,21 @@ TEST(DynamicTe, TraceStatisticsNamedOrderPeaksAndAliasing) {
   // The (U,U) line in Hz, from the spectrum on the jittered timestamps.
   analysis::PeakSearch search;
   search.min_frequency_hz = 1.0;
-  const auto hz_peaks = analysis::find_peaks(r.spectrum_hz, search);
+  const auto hz_peaks = analysis::find_peaks(
+      spectrum_on_timestamps(rec.t, rec.te_arcsec, analysis::Window::kHann, analyser), search);
   ASSERT_FALSE(hz_peaks.empty());
   EXPECT_NEAR(hz_peaks[0].frequency_hz, 162 * (100.0 / 60) / kN, 0.01);
   EXPECT_NEAR(hz_peaks[0].amplitude, kA2, 0.03 * kA2);
+
+  // Welch over the two whole revolutions: bins at whole orders, where every line of this gear
+  // falls (1, 160, 162), so each reads its amplitude.
+  ASSERT_EQ(r.averaged_revolutions, 2u);
+  ASSERT_GT(r.averaged_amplitude_arcsec.size(), 163u);
+  EXPECT_DOUBLE_EQ(r.averaged_order_output[162], 162.0);
+  EXPECT_NEAR(r.averaged_amplitude_arcsec[1], kA1, 0.01 * kA1);
+  EXPECT_NEAR(r.averaged_amplitude_arcsec[160], kA3, 0.01 * kA3);
+  EXPECT_NEAR(r.averaged_amplitude_arcsec[162], kA2, 0.01 * kA2);
+  EXPECT_LT(r.averaged_amplitude_arcsec[100], 0.01);
 
   ASSERT_EQ(r.aliased.size(), 1u);
   EXPECT_EQ(r.aliased[0].name, "tooth mesh 2 z_C");

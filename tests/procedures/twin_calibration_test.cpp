@@ -49,15 +49,14 @@ TEST(TwinCalibration, HarmonicFitRecoversAmplitudesPhasesAndTheResidualFalls) {
   }
   EXPECT_LT(fit.rms_residual_rad, 1e-13);
 
-  analysis::SpectrumAnalyser analyser;
-  const auto before = twin_residual(t, measured, predicted, analysis::Window::kHann, analyser);
+  const auto before = twin_residual(measured, predicted);
   // Residual before: offset 15" plus three sines; over one output revolution they are
   // orthogonal, so RMS² = 15² + Σ|ΔA|²/2 with ΔA the phasor differences.
   const double d1 = std::abs(std::polar(20.0, 0.3) - std::polar(14.0, 0.0));
   EXPECT_NEAR(before.rms_arcsec, std::sqrt(15 * 15 + (d1 * d1 + 10 * 10) / 2), 1e-3);
   std::vector<double> calibrated;
   for (std::size_t i = 0; i < t.size(); ++i) calibrated.push_back(fit.evaluate(th1[i], th2[i]));
-  const auto after = twin_residual(t, measured, calibrated, analysis::Window::kHann, analyser);
+  const auto after = twin_residual(measured, calibrated);
   EXPECT_LT(after.rms_arcsec, 1e-6);
   EXPECT_LT(after.rms_arcsec, 1e-6 * before.rms_arcsec);
   EXPECT_EQ(to_json(fit)["terms"].size(), 3u);

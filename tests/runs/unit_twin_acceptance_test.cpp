@@ -131,12 +131,9 @@ TEST(UnitTwinAcceptance, CalibratedAcrossProceduresPredictsOtherSpeedsAndLoadsAt
     // For comparison, the bench's nominal twin over the same samples.
     const auto samples =
         storage::read_sample_log(s.store->paths(next.at("run_id")).samples).samples;
-    analysis::SpectrumAnalyser analyser;
     const double nominal_rms =
-        twin::twin_overlay_residual(
-            twin::twin_overlay(twin::replay_twin(sim.bench->description().twin_gear,
-                                                 sim.bench->description().sense, samples)),
-            analyser)
+        twin::twin_overlay_residual(twin::replay_twin(sim.bench->description().twin_gear,
+                                                      sim.bench->description().sense, samples))
             .rms_arcsec;
     std::printf(
         "%3.0f rpm / %2.0f N·m: unit twin beside the bench, RMS residual %.3f arcsec = "

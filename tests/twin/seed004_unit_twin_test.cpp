@@ -42,8 +42,7 @@ TEST(Seed004UnitTwin, DynamicRunCalibratesToTheNoiseFloor) {
   const auto run =
       testing::synthesise_run(seed004_true(), {{100, 0, 1.0, false}, {100, 0, 61}}, noise);
   const auto nominal = seed004_nominal();
-  analysis::SpectrumAnalyser analyser;
-  const auto cal = calibrate_twin(nominal, testing::sense_of(nominal), run.samples, analyser);
+  const auto cal = calibrate_twin(nominal, testing::sense_of(nominal), run.samples);
   std::printf("noise floor %.3f arcsec; residual before %.3f (p2p %.2f), after %.3f arcsec\n",
               run.noise_floor_arcsec, cal.before.rms_arcsec, cal.before.p2p_arcsec,
               cal.after.rms_arcsec);

@@ -67,11 +67,9 @@ TEST(UnitTwinCalibration, RecoversEachSegmentsStiffnessAndPredictsAnUnseenSpeedA
                                             {"free", "dynamic", free_run.samples},
                                             {"loaded", "dynamic", loaded_run.samples}};
   const auto nominal = testing::nominal_gear();
-  analysis::SpectrumAnalyser analyser;
   TwinCalibrationOptions options;
   options.passes = 3;
-  const auto cal =
-      calibrate_unit_twin(nominal, testing::sense_of(nominal), runs, analyser, start, options);
+  const auto cal = calibrate_unit_twin(nominal, testing::sense_of(nominal), runs, start, options);
 
   ASSERT_NE(std::find(cal.fitted.begin(), cal.fitted.end(), "stiffness_per_segment"),
             cal.fitted.end());
@@ -104,21 +102,19 @@ TEST(UnitTwinCalibration, RecoversEachSegmentsStiffnessAndPredictsAnUnseenSpeedA
   const auto& unseen = dynamic_run(150, 35);
   const auto points =
       replay_twin(cal.calibrated, testing::sense_of(nominal), unseen.samples, cal.solver);
-  const auto residual = twin_overlay_residual(twin_overlay(points), analyser);
+  const auto residual = twin_overlay_residual(points);
   std::printf("150 rpm / 35 N·m predicted: residual %.3f arcsec, floor %.3f\n", residual.rms_arcsec,
               unseen.noise_floor_arcsec);
   EXPECT_LE(residual.rms_arcsec, 1.5 * unseen.noise_floor_arcsec);
 }
 
 TEST(UnitTwinCalibration, RefusesNoRunsAndALoopThatIsNoCatalogueCurve) {
-  analysis::SpectrumAnalyser analyser;
   const auto nominal = testing::nominal_gear();
-  EXPECT_THROW(calibrate_unit_twin(nominal, testing::sense_of(nominal), {}, analyser),
-               std::invalid_argument);
+  EXPECT_THROW(calibrate_unit_twin(nominal, testing::sense_of(nominal), {}), std::invalid_argument);
   UnitTwinStart start;
   start.loop_stiffness = model::ThreeSegmentStiffness{6e4, 50, 1e5, 40, 1.2e5};  // T2 < T1
   const std::vector<UnitRunSamples> runs = {{"free", "dynamic", dynamic_run(120, 0).samples}};
-  EXPECT_THROW(calibrate_unit_twin(nominal, testing::sense_of(nominal), runs, analyser, start),
+  EXPECT_THROW(calibrate_unit_twin(nominal, testing::sense_of(nominal), runs, start),
                std::invalid_argument);
 }
 

@@ -25,13 +25,14 @@ std::vector<SpectralPeak> find_peaks(const AmplitudeSpectrum& spectrum, const Pe
   const auto& a = spectrum.amplitude;
   std::vector<SpectralPeak> peaks;
   if (a.size() < 3) return peaks;
-  const double max_f =
-      search.max_frequency_hz > 0 ? search.max_frequency_hz : spectrum.frequency_hz.back();
+  const double max_f = search.max_frequency_hz > 0
+                           ? search.max_frequency_hz
+                           : static_cast<double>(a.size() - 1) * spectrum.resolution_hz;
   // Local maxima first; only the largest few are interpolated: a noisy floor holds tens of
   // thousands of maxima and each interpolation bisects the window's lobe.
   std::vector<std::size_t> maxima;
   for (std::size_t k = 1; k + 1 < a.size(); ++k) {
-    const double f = spectrum.frequency_hz[k];
+    const double f = static_cast<double>(k) * spectrum.resolution_hz;  // = frequency_hz[k]
     if (f > max_f || f < search.min_frequency_hz) continue;
     if (a[k] > a[k - 1] && a[k] >= a[k + 1]) maxima.push_back(k);
   }

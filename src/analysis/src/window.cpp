@@ -23,19 +23,21 @@ std::array<double, 5> cosine_terms(Window window) {
 
 }  // namespace
 
-std::vector<double> window_coefficients(Window window, std::size_t n) {
+double window_coefficient(Window window, std::size_t i, std::size_t n) {
   const auto a = cosine_terms(window);
-  std::vector<double> w(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    const double phase = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
-    double value = 0;
-    double sign = 1;
-    for (std::size_t k = 0; k < a.size(); ++k) {
-      value += sign * a[k] * std::cos(static_cast<double>(k) * phase);
-      sign = -sign;
-    }
-    w[i] = value;
+  const double phase = 2.0 * std::numbers::pi * static_cast<double>(i) / static_cast<double>(n);
+  double value = 0;
+  double sign = 1;
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    value += sign * a[k] * std::cos(static_cast<double>(k) * phase);
+    sign = -sign;
   }
+  return value;
+}
+
+std::vector<double> window_coefficients(Window window, std::size_t n) {
+  std::vector<double> w(n);
+  for (std::size_t i = 0; i < n; ++i) w[i] = window_coefficient(window, i, n);
   return w;
 }
 

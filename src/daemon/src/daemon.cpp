@@ -10,6 +10,7 @@
 #include "wavebench/daemon/fleet_api.hpp"
 #include "wavebench/daemon/publishing_run_launcher.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
+#include "wavebench/fleet/sqlite_results_store.hpp"
 
 namespace wavebench::daemon {
 
@@ -23,15 +24,21 @@ DaemonSetup checked(DaemonSetup setup) {
   return setup;
 }
 
+// Every finished run goes to the results store: the shared one when configured, else the
+// bench's own summaries in its index (what /api/fleet answers from).
 std::unique_ptr<fleet::Outbox> make_outbox(DaemonSetup& setup, const storage::RunStore& store) {
-  if (!setup.results.shared()) return nullptr;
   fleet::StoreFactory connect = setup.results_store;
-  if (!connect) {
+  if (!connect && setup.results.shared()) {
     connect = [config = setup.results]() -> std::unique_ptr<fleet::ResultsStore> {
       return std::make_unique<fleet::PostgresResultsStore>(config);
     };
+  } else if (!connect) {
+    connect = [index = store.root() / "index.sqlite"]() -> std::unique_ptr<fleet::ResultsStore> {
+      return std::make_unique<fleet::SqliteResultsStore>(index);
+    };
   }
   fleet::OutboxOptions options;
+  if (!setup.results.shared()) options.ledger = "fleet_own_published";
   options.identity = {setup.results.bench, setup.results.station};
   options.retry_max = std::chrono::milliseconds(static_cast<long>(setup.results.retry_max_s * 1e3));
   options.retry_first = std::min(options.retry_first, options.retry_max);
@@ -58,15 +65,15 @@ Daemon::Daemon(DaemonSetup setup)
            setup_.specs_dir, std::make_shared<const ConsoleFiles>(setup_.console_root),
            SoftwareIdentity{setup_.software_version, setup_.software_commit}) {
   bench_thread_.set_check(setup_.bench_check);
-  if (setup_.results.shared()) api_.set_fleet_queries(make_fleet_queries(setup_.results));
+  api_.set_fleet_queries(make_fleet_queries(setup_.results, store_.root() / "index.sqlite"));
+  api_.set_results_status([this] { return results_status_json(); });
   storage::RunQuery incomplete;
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(), store_.count_runs(),
                store_.count_runs(incomplete));
-  if (outbox_) {
-    spdlog::info("results store: {} ({} runs to send)", setup_.results.url,
-                 outbox_->counts().pending);
-  }
+  spdlog::info("results store: {} ({} runs to send)",
+               setup_.results.shared() ? setup_.results.url : "this bench's own (index.sqlite)",
+               outbox_->counts().pending);
 }
 
 Daemon::~Daemon() {
@@ -108,6 +115,28 @@ void Daemon::emergency_stop(const std::string& reason) noexcept {
     bench_thread_.emergency_stop(reason, std::chrono::seconds(5));
   } catch (...) {
   }
+}
+
+nlohmann::json Daemon::results_status_json() const {
+  const auto c = outbox_->counts();
+  const auto text = [](const std::string& t) {
+    return t.empty() ? nlohmann::json(nullptr) : nlohmann::json(t);
+  };
+  nlohmann::json next = nullptr;
+  if (c.next_attempt) {
+    const auto wait =
+        std::chrono::duration<double>(*c.next_attempt - std::chrono::steady_clock::now());
+    next = std::max(0.0, wait.count());
+  }
+  // libpq's messages name the host, user and database, never the password (refused in the
+  // URL, read from a file).
+  return {{"kind", setup_.results.shared() ? "postgresql" : "sqlite"},
+          {"pending", c.pending},
+          {"sent", c.sent},
+          {"failures", c.failures},
+          {"last_error", text(c.last_error)},
+          {"last_published_at", text(c.last_published_at)},
+          {"next_attempt_in_s", next}};
 }
 
 unsigned short Daemon::port() const {

@@ -5,7 +5,9 @@
 #include <optional>
 #include <stdexcept>
 
+#include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
+#include "wavebench/fleet/sqlite_results_store.hpp"
 
 namespace wavebench::daemon {
 
@@ -59,6 +61,19 @@ fleet::FigureQuery figure_query(const HttpTarget& t) {
   return q;
 }
 
+// The figures a trend may name, for the console's fleet page (no store needed).
+ApiResponse figures() {
+  nlohmann::json list = nlohmann::json::array();
+  for (const auto& f : fleet::fleet_figures()) {
+    list.push_back({{"name", f.name},
+                    {"unit", f.unit},
+                    {"what", f.what},
+                    {"has_spec_limit", *f.limit_key != '\0'},
+                    {"limit_is_minimum", f.limit_is_minimum}});
+  }
+  return {200, {{"figures", list}}};
+}
+
 ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
   const std::string& what = t.segments.at(2);
   if (what == "runs") {
@@ -83,16 +98,23 @@ ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
   if (what == "spc") {
     return {200, fleet::to_json(store.spc(figure_query(t), {number(t, "lsl"), number(t, "usl")}))};
   }
-  return api_error(404, "not found", "no resource at " + t.path + "; expected runs, trend or spc");
+  return api_error(404, "not found",
+                   "no resource at " + t.path + "; expected runs, trend, spc or figures");
 }
 
 }  // namespace
 
-FleetQueries make_fleet_queries(fleet::ResultsConfig config) {
-  return [config = std::move(config)](const HttpTarget& target) -> ApiResponse {
-    std::unique_ptr<fleet::PostgresResultsStore> store;
+FleetQueries make_fleet_queries(fleet::ResultsConfig config, std::filesystem::path own_index) {
+  return [config = std::move(config),
+          own_index = std::move(own_index)](const HttpTarget& target) -> ApiResponse {
+    if (target.segments.size() == 3 && target.segments[2] == "figures") return figures();
+    std::unique_ptr<fleet::ResultsStore> store;
     try {
-      store = std::make_unique<fleet::PostgresResultsStore>(config);
+      if (config.shared()) {
+        store = std::make_unique<fleet::PostgresResultsStore>(config);
+      } else {
+        store = std::make_unique<fleet::SqliteResultsStore>(own_index);
+      }
     } catch (const std::exception& e) {
       return api_error(503, "results store unreachable", e.what());
     }

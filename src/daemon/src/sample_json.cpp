@@ -1,7 +1,10 @@
 #include "wavebench/daemon/sample_json.hpp"
 
+#include <charconv>
+#include <cmath>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace wavebench::daemon {
 
@@ -33,7 +36,67 @@ T required(const nlohmann::json& json, const char* key) {
   return it->get<T>();
 }
 
+// As nlohmann::json dumps a double: the shortest text that reads back the same, with ".0" on a
+// whole number so it stays a float; null when not finite.
+void append_double(std::string& out, double v) {
+  if (!std::isfinite(v)) {
+    out += "null";
+    return;
+  }
+  char buf[32];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  const std::string_view text(buf, static_cast<std::size_t>(end - buf));
+  out += text;
+  if (text.find_first_of(".e") == std::string_view::npos) out += ".0";
+}
+
+template <typename T>
+void append_integer(std::string& out, T v) {
+  char buf[24];
+  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, v);
+  out.append(buf, end);
+}
+
 }  // namespace
+
+void append_sample_json(std::string& out, const storage::SyncSample& sample,
+                        std::span<const std::string> extra_keys) {
+  out += "{\"index\":";
+  append_integer(out, sample.index);
+  out += ",\"sync_counter\":";
+  append_integer(out, sample.sync_counter);
+  out += ",\"flags\":";
+  append_integer(out, sample.flags);
+  out += ",\"receive_time_ns\":";
+  append_integer(out, sample.receive_time_ns);
+  out += ",\"missed_before\":";
+  append_integer(out, sample.missed_before);
+  for (const auto& c : kChannels) {
+    out += ",\"";
+    out += c.key;
+    out += "\":";
+    if (sample.valid(c.flag)) {
+      append_double(out, sample.*c.value);
+    } else {
+      out += "null";
+    }
+  }
+  if (!extra_keys.empty()) {
+    out += ",\"extra\":{";
+    for (std::size_t i = 0; i < extra_keys.size() && i < storage::kMaxExtraChannels; ++i) {
+      if (i > 0) out += ',';
+      out += extra_keys[i];
+      out += ':';
+      if (sample.extra_arrived(i)) {
+        append_double(out, sample.extra[i]);
+      } else {
+        out += "null";
+      }
+    }
+    out += '}';
+  }
+  out += '}';
+}
 
 nlohmann::json sample_to_json(const storage::SyncSample& sample,
                               std::span<const storage::ChannelInfo> extra) {

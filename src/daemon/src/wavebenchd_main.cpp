@@ -22,6 +22,7 @@
 #include "wavebench/daemon/daemon_options.hpp"
 #include "wavebench/daemon/last_resort_guard.hpp"
 #include "wavebench/fleet/results_config.hpp"
+#include "wavebench/runs/allocator_policy.hpp"
 #include "wavebench/runs/software_version.hpp"
 
 namespace {
@@ -139,6 +140,7 @@ int run(const daemon::DaemonOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  runs::use_allocator_policy();
   CLI::App app{"wavebenchd - the strain-wave gear test bench daemon"};
   app.set_version_flag("--version", std::string("wavebenchd ") + runs::software_version() +
                                         " (commit " + runs::software_commit() + ")");

@@ -52,14 +52,20 @@ Outbox::Outbox(const storage::RunStore& store, StoreFactory connect, OutboxOptio
   }
   sqlite3_busy_timeout(index_, 5000);
   try {
-    exec(index_,
-         "CREATE TABLE IF NOT EXISTS fleet_published (run_id TEXT PRIMARY KEY, "
-         "published_at TEXT NOT NULL)");
+    if (options_.ledger.empty() ||
+        options_.ledger.find_first_not_of("abcdefghijklmnopqrstuvwxyz_") != std::string::npos) {
+      throw std::invalid_argument("outbox: ledger '" + options_.ledger +
+                                  "', expected a table name of [a-z_]");
+    }
+    exec(index_, ("CREATE TABLE IF NOT EXISTS " + options_.ledger +
+                  " (run_id TEXT PRIMARY KEY, published_at TEXT NOT NULL)")
+                     .c_str());
     sqlite3_stmt* s = nullptr;
-    if (sqlite3_prepare_v2(index_,
-                           "SELECT id FROM runs WHERE status <> 'running' AND id NOT IN "
-                           "(SELECT run_id FROM fleet_published) ORDER BY id",
-                           -1, &s, nullptr) != SQLITE_OK) {
+    const std::string unsent =
+        "SELECT id FROM runs WHERE status <> 'running' AND id NOT IN "
+        "(SELECT run_id FROM " +
+        options_.ledger + ") ORDER BY id";
+    if (sqlite3_prepare_v2(index_, unsent.c_str(), -1, &s, nullptr) != SQLITE_OK) {
       throw std::runtime_error(std::string("outbox: ") + sqlite3_errmsg(index_));
     }
     while (sqlite3_step(s) == SQLITE_ROW) {
@@ -115,10 +121,9 @@ bool Outbox::wait_idle(std::chrono::milliseconds timeout) const {
 
 void Outbox::mark_published(const std::string& run_id) {
   sqlite3_stmt* s = nullptr;
-  if (sqlite3_prepare_v2(index_,
-                         "INSERT OR IGNORE INTO fleet_published (run_id, published_at) "
-                         "VALUES (?1, ?2)",
-                         -1, &s, nullptr) != SQLITE_OK) {
+  const std::string insert =
+      "INSERT OR IGNORE INTO " + options_.ledger + " (run_id, published_at) VALUES (?1, ?2)";
+  if (sqlite3_prepare_v2(index_, insert.c_str(), -1, &s, nullptr) != SQLITE_OK) {
     throw std::runtime_error(std::string("outbox: ") + sqlite3_errmsg(index_));
   }
   const std::string at = now_utc();
@@ -165,7 +170,11 @@ void Outbox::run() {
         std::lock_guard lock(mutex_);
         const auto it = std::find(pending_.begin(), pending_.end(), id);
         if (it != pending_.end()) pending_.erase(it);
-        if (sent) ++counts_.sent;
+        if (sent) {
+          ++counts_.sent;
+          counts_.last_published_at = now_utc();
+        }
+        counts_.next_attempt.reset();
       }
       changed_.notify_all();
       if (failing) event("results store: reachable again, sending the runs that waited");
@@ -184,6 +193,7 @@ void Outbox::run() {
           pending_.erase(it);
           pending_.push_back(id);
         }
+        counts_.next_attempt = std::chrono::steady_clock::now() + delay;
       }
       event("results store: run " + id + " not sent (" + e.what() + "); retrying in " +
             std::to_string(delay.count()) + " ms");

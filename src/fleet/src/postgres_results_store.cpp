@@ -4,8 +4,10 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "figure_query_rules.hpp"
 #include "pg_connection.hpp"
 #include "schema_migrations.hpp"
+#include "utc_time_text.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
 
 namespace wavebench::fleet {
@@ -32,6 +34,14 @@ std::string json_text(const nlohmann::json& value) {
 std::string iso(const char* column) {
   return std::string("to_char(") + column +
          " AT TIME ZONE 'UTC', 'YYYY-MM-DD\"T\"HH24:MI:SS.US\"Z\"')";
+}
+
+// A time bound as the SQLite store reads it (a time without a zone is UTC, not the server's
+// TimeZone); a bad one is refused naming its key before it reaches the server.
+std::optional<std::string> utc_bound(const std::optional<std::string>& text,
+                                     const std::string& key) {
+  if (!text) return std::nullopt;
+  return canonical_utc(*text, key);
 }
 
 // WHERE clauses with their parameters numbered in order.
@@ -144,8 +154,8 @@ std::vector<FleetRunRow> PostgresResultsStore::runs(const FleetRunQuery& q) {
   where.add("spec = $", q.spec);
   where.add("verdict = $", q.verdict);
   where.add("status = $", q.status);
-  where.add("started_at >= $", q.from);
-  where.add("started_at <= $", q.to);
+  where.add("started_at >= $", utc_bound(q.from, "from"));
+  where.add("started_at <= $", utc_bound(q.to, "to"));
   std::string figures;
   for (const auto& f : fleet_figures()) figures += std::string(", ") + f.column;
   const auto r = db_->exec(
@@ -177,21 +187,14 @@ std::vector<FleetRunRow> PostgresResultsStore::runs(const FleetRunQuery& q) {
 }
 
 std::vector<TrendPoint> PostgresResultsStore::trend(const FigureQuery& q) {
-  const auto& figure = find_fleet_figure(q.figure);
+  const auto& figure = checked_figure(q);
   const bool one_pass = q.direction || q.load_nm;
-  if (one_pass && std::string(figure.name) != "static_te_p2p") {
-    throw std::invalid_argument("direction/load: given for figure '" + q.figure +
-                                "', expected them only with static_te_p2p");
-  }
-  if (q.gear_model.empty()) {
-    throw std::invalid_argument("gear_model: got '', expected the gear model to trend");
-  }
   Where where;
   where.add("r.gear_model = $", q.gear_model);
   where.add_fixed("r.status = 'complete'");
   where.add("r.bench = $", q.bench);
-  where.add("r.started_at >= $", q.from);
-  where.add("r.started_at <= $", q.to);
+  where.add("r.started_at >= $", utc_bound(q.from, "from"));
+  where.add("r.started_at <= $", utc_bound(q.to, "to"));
   std::string value = std::string("r.") + figure.column;
   std::string from = "fleet_runs r";
   if (one_pass) {
@@ -220,13 +223,10 @@ std::vector<TrendPoint> PostgresResultsStore::trend(const FigureQuery& q) {
 }
 
 SpcAnswer PostgresResultsStore::spc(const FigureQuery& q, const SpecLimits& limits) {
-  SpcAnswer answer;
-  answer.points = trend(q);
+  auto points = trend(q);
   const auto& figure = find_fleet_figure(q.figure);
-  if (limits.lower || limits.upper) {
-    answer.limits = limits;
-    answer.limits_from = "command line";
-  } else if (*figure.limit_key) {
+  std::optional<NewestRunLimit> newest;
+  if (*figure.limit_key && !limits.lower && !limits.upper) {
     Where where;
     where.add("gear_model = $", q.gear_model);
     where.add_fixed("status = 'complete'");
@@ -238,21 +238,9 @@ SpcAnswer PostgresResultsStore::spc(const FigureQuery& q, const SpecLimits& limi
                       "fleet_runs" +
                       where.sql + " ORDER BY started_at DESC LIMIT 1",
                   where.params);
-    if (r.rows() == 1 && r.number(0, 2)) {
-      (figure.limit_is_minimum ? answer.limits.lower : answer.limits.upper) = r.number(0, 2);
-      answer.limits_from = r.text(0, 0).empty()
-                               ? std::string("the newest run's limits")
-                               : "spec " + r.text(0, 0) + " (" + r.text(0, 1) + ")";
-    }
+    if (r.rows() == 1) newest = NewestRunLimit{r.text(0, 0), r.text(0, 1), r.number(0, 2)};
   }
-  if (answer.limits_from.empty()) answer.limits_from = "none";
-  if (answer.points.size() >= 2) {
-    std::vector<double> values;
-    values.reserve(answer.points.size());
-    for (const auto& p : answer.points) values.push_back(p.value);
-    answer.figures = spc_figures(values, answer.limits);
-  }
-  return answer;
+  return spc_answer(std::move(points), figure, limits, newest);
 }
 
 }  // namespace wavebench::fleet

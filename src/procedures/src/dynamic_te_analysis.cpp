@@ -2,12 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <random>
 #include <stdexcept>
 
 #include "wavebench/analysis/order_spectrum.hpp"
 #include "wavebench/analysis/spectral_peaks.hpp"
+#include "wavebench/procedures/dynamic_te_record.hpp"
 #include "wavebench/procedures/figure_propagation.hpp"
 
 namespace wavebench::procedures {
@@ -47,25 +49,15 @@ std::vector<OrderName> order_names(const GearSense& sense, const GearTeeth& teet
   return names;
 }
 
-void require_increasing(std::span<const double> v, const char* what) {
-  for (std::size_t i = 1; i < v.size(); ++i) {
-    if (!(v[i] > v[i - 1])) {
-      throw std::invalid_argument(std::string("dynamic TE: ") + what +
-                                  " is not strictly increasing at sample " + std::to_string(i) +
-                                  "; expected a turning gear and increasing timestamps");
-    }
-  }
-}
-
 // The per-sample budget of a TE record [arcsec]: the encoders' steps, and the rest of the noise
 // the second differences see (they see the quantisation too: it is taken out so that it is
 // not counted twice).
-UncertainFigure sample_budget(std::span<const double> te_arcsec, const GearSense& sense,
+UncertainFigure sample_budget(double measured_noise_arcsec, const GearSense& sense,
                               const DynamicTeOptions& o) {
   UncertainFigure f;
   const double q_out = quantisation_standard(o.output_resolution_rad) * kArcsecPerRad;
   const double q_in = quantisation_standard(o.input_resolution_rad / sense.ratio) * kArcsecPerRad;
-  const double measured = sample_noise_from_second_differences(te_arcsec);
+  const double measured = measured_noise_arcsec;
   if (q_out > 0) f.add("output encoder quantisation", q_out, 'B', true);
   if (q_in > 0) f.add("input encoder quantisation (/N)", q_in, 'B', true);
   f.add("sample noise (second differences)",
@@ -85,49 +77,88 @@ struct RecordStatistics {
   double p2p = 0, rms = 0;
 };
 
-RecordStatistics record_statistics(std::span<const double> v) {
-  double sum = 0, lo = INFINITY, hi = -INFINITY;
-  for (double x : v) {
+// p2p and RMS of `v` + `u`·(a normal draw) per point, without a perturbed copy.
+template <class Noise>
+RecordStatistics record_statistics(std::span<const double> v, Noise&& noise) {
+  double sum = 0, squares = 0, lo = std::numeric_limits<double>::infinity(), hi = -lo;
+  for (const double x0 : v) {
+    const double x = x0 + noise();
     sum += x;
+    squares += x * x;
     lo = std::min(lo, x);
     hi = std::max(hi, x);
   }
-  const double mean = sum / static_cast<double>(v.size());
-  double ss = 0;
-  for (double x : v) ss += (x - mean) * (x - mean);
-  return {hi - lo, std::sqrt(ss / static_cast<double>(v.size()))};
+  const double n = static_cast<double>(v.size());
+  const double mean = sum / n;
+  return {hi - lo, std::sqrt(std::max(0.0, squares / n - mean * mean))};
 }
 
 // p2p and RMS of a dense record: the linear terms (√2·u for p2p at its two extremes, u/√n for
 // RMS), plus the Monte Carlo remainder (figure_propagation.hpp): with thousands of samples near
-// each extreme the p2p's upward bias is a few u and must be in the budget.
-void add_record_budgets(DynamicTeResult& r, const UncertainFigure& per_sample, int draws) {
-  const double n = static_cast<double>(r.te_arcsec.size());
+// each extreme the p2p's upward bias is a few u and must be in the budget. The draws perturb
+// the record on its order grid (as dense as the samples): a long record keeps no other copy.
+// Their bias is taken against the grid's own p2p and RMS.
+void add_record_budgets(DynamicTeResult& r, std::span<const double> grid,
+                        const UncertainFigure& per_sample, int draws) {
+  const double n = static_cast<double>(r.samples);
   r.mean = linear_figure(r.mean_arcsec, per_sample, 1 / std::sqrt(n));
   r.p2p = linear_figure(r.p2p_arcsec, per_sample, std::sqrt(2.0));
   r.rms = linear_figure(r.rms_arcsec, per_sample, 1 / std::sqrt(n));
   const double u = per_sample.combined_standard();
-  if (draws < 2 || !(u > 0)) return;
+  if (draws < 2 || !(u > 0) || grid.size() < 2) return;
+  const auto exact = record_statistics(grid, [] { return 0.0; });
   std::mt19937_64 rng(PropagationOptions{}.seed);
   std::normal_distribution<double> unit(0.0, u);
-  std::vector<double> perturbed(r.te_arcsec.size());
   double p_sum = 0, p_ss = 0, r_sum = 0, r_ss = 0;
   for (int d = 0; d < draws; ++d) {
-    for (std::size_t i = 0; i < perturbed.size(); ++i) perturbed[i] = r.te_arcsec[i] + unit(rng);
-    const auto s = record_statistics(perturbed);
+    const auto s = record_statistics(grid, [&] { return unit(rng); });
     p_sum += s.p2p;
     p_ss += s.p2p * s.p2p;
     r_sum += s.rms;
     r_ss += s.rms * s.rms;
   }
-  const auto excess = [draws](double sum, double ss, const UncertainFigure& f) {
+  const auto excess = [draws](double sum, double ss, double noiseless, const UncertainFigure& f) {
     const double m = sum / draws;
     const double var = std::max(0.0, (ss - draws * m * m) / (draws - 1));
     const double lin = f.combined_standard();
-    return std::sqrt(std::max(0.0, var - lin * lin)) + std::abs(m - f.value);
+    return std::sqrt(std::max(0.0, var - lin * lin)) + std::abs(m - noiseless);
   };
-  r.p2p.add(kExtremeSelectionSource, excess(p_sum, p_ss, r.p2p), 'A', false);
-  r.rms.add(kExtremeSelectionSource, excess(r_sum, r_ss, r.rms), 'A', false);
+  r.p2p.add(kExtremeSelectionSource, excess(p_sum, p_ss, exact.p2p, r.p2p), 'A', false);
+  r.rms.add(kExtremeSelectionSource, excess(r_sum, r_ss, exact.rms, r.rms), 'A', false);
+}
+
+// Bins up to `max_order` (0: all) of a spectrum (bin k at k · resolution), with their axis.
+void keep_orders(const std::vector<double>& amplitude, double resolution, double max_order,
+                 std::vector<double>& axis_out, std::vector<double>& amplitude_out) {
+  std::size_t end = amplitude.size();
+  if (max_order > 0) {
+    end = std::min(end, static_cast<std::size_t>(std::floor(max_order / resolution + 1e-9)) + 1);
+  }
+  axis_out.resize(end);
+  for (std::size_t k = 0; k < end; ++k) axis_out[k] = static_cast<double>(k) * resolution;
+  amplitude_out.assign(amplitude.begin(), amplitude.begin() + static_cast<std::ptrdiff_t>(end));
+}
+
+// Welch over whole output revolutions: each revolution's amplitude spectrum (Hann), the
+// amplitudes power-averaged.
+void add_averaged_spectrum(DynamicTeResult& r, std::span<const double> grid,
+                           std::size_t points_per_revolution, double max_order,
+                           analysis::SpectrumAnalyser& analyser) {
+  const std::size_t revolutions = grid.size() / points_per_revolution;
+  if (revolutions < 2) return;
+  std::vector<double> power;
+  analysis::AmplitudeSpectrum last;
+  for (std::size_t k = 0; k < revolutions; ++k) {
+    last = analyser.analyse(grid.subspan(k * points_per_revolution, points_per_revolution),
+                            static_cast<double>(points_per_revolution), analysis::Window::kHann);
+    power.resize(last.amplitude.size(), 0.0);
+    for (std::size_t i = 0; i < power.size(); ++i)
+      power[i] += last.amplitude[i] * last.amplitude[i];
+  }
+  for (double& p : power) p = std::sqrt(p / static_cast<double>(revolutions));
+  keep_orders(power, last.resolution_hz, max_order, r.averaged_order_output,
+              r.averaged_amplitude_arcsec);
+  r.averaged_revolutions = revolutions;
 }
 
 }  // namespace
@@ -148,86 +179,47 @@ analysis::AmplitudeSpectrum spectrum_on_timestamps(std::span<const double> time_
   return analyser.analyse(uniform, 1.0 / step, window);
 }
 
-DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
-                                   std::span<const double> theta_in_rad,
-                                   std::span<const double> theta_out_rad, const GearSense& sense,
-                                   const GearTeeth& teeth,
-                                   std::span<const PredictedComponent> predicted,
-                                   const DynamicTeOptions& options,
-                                   analysis::SpectrumAnalyser& analyser) {
+DynamicTeResult analyse_dynamic_record(const DynamicRecordFigures& figures,
+                                       std::vector<double>&& grid,
+                                       std::size_t points_per_revolution, const GearSense& sense,
+                                       const GearTeeth& teeth,
+                                       std::span<const PredictedComponent> predicted,
+                                       const DynamicTeOptions& options,
+                                       analysis::SpectrumAnalyser& analyser) {
   sense.validate();
-  const std::size_t n = time_s.size();
-  if (theta_in_rad.size() != n || theta_out_rad.size() != n || n < 8) {
-    throw std::invalid_argument("dynamic TE: time has " + std::to_string(n) + " samples, θ_in " +
-                                std::to_string(theta_in_rad.size()) + ", θ_out " +
-                                std::to_string(theta_out_rad.size()) +
-                                "; expected equal lengths of at least 8");
-  }
-  require_increasing(time_s, "time");
   DynamicTeResult r;
-  r.time_s.resize(n);
-  r.output_angle_rad.resize(n);
-  r.te_arcsec.resize(n);
-  const double theta2_0 = sense.model_output_angle(theta_out_rad[0]);
-  for (std::size_t i = 0; i < n; ++i) {
-    r.time_s[i] = time_s[i] - time_s[0];
-    r.output_angle_rad[i] = sense.model_output_angle(theta_out_rad[i]) - theta2_0;
-    r.te_arcsec[i] = sense.transmission_error(theta_in_rad[i], theta_out_rad[i]) * kArcsecPerRad;
-  }
-  // Order analysis needs the output turning one way; reversed, run it on −θ2.
-  const bool reversed = r.output_angle_rad.back() < 0;
-  std::vector<double> angle = r.output_angle_rad;
-  if (reversed) {
-    for (auto& a : angle) a = -a;
-  }
-  require_increasing(angle, "output angle");
-  r.output_revolutions = angle.back() / kTwoPi;
+  r.samples = figures.samples;
+  r.output_revolutions = figures.output_angle_rad / kTwoPi;
   if (r.output_revolutions < 1.0) {
     throw std::invalid_argument(
         "dynamic TE: output revolutions = " + std::to_string(r.output_revolutions) +
         "; expected at least one whole output revolution");
   }
-  const double duration = r.time_s.back();
-  r.sample_rate_hz = static_cast<double>(n - 1) / duration;
+  const std::size_t whole = grid.size() / points_per_revolution;
+  if (whole < 1) {
+    throw std::invalid_argument("dynamic TE: the order grid holds " + std::to_string(grid.size()) +
+                                " points; expected at least one revolution of " +
+                                std::to_string(points_per_revolution));
+  }
+  grid.resize(whole * points_per_revolution);
+  const double duration = figures.duration_s;
+  r.sample_rate_hz = static_cast<double>(figures.samples - 1) / duration;
   r.nyquist_hz = r.sample_rate_hz / 2;
-  r.input_speed_hz = std::abs(theta_in_rad[n - 1] - theta_in_rad[0]) / kTwoPi / duration;
+  r.input_speed_hz = figures.input_angle_rad / kTwoPi / duration;
+  r.mean_arcsec = figures.mean_arcsec;
+  r.p2p_arcsec = figures.p2p_arcsec;
+  r.rms_arcsec = figures.rms_arcsec;
+  const UncertainFigure per_sample =
+      sample_budget(figures.second_difference_noise_arcsec, sense, options);
+  add_record_budgets(r, grid, per_sample, options.monte_carlo_draws);
+  add_averaged_spectrum(r, grid, points_per_revolution, options.max_order_kept, analyser);
 
-  double sum = 0, lo = INFINITY, hi = -INFINITY;
-  for (double v : r.te_arcsec) {
-    sum += v;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  r.mean_arcsec = sum / static_cast<double>(n);
-  r.p2p_arcsec = hi - lo;
-  double squares = 0;
-  for (double v : r.te_arcsec) squares += (v - r.mean_arcsec) * (v - r.mean_arcsec);
-  r.rms_arcsec = std::sqrt(squares / static_cast<double>(n));
-  const UncertainFigure per_sample = sample_budget(r.te_arcsec, sense, options);
-  add_record_budgets(r, per_sample, options.monte_carlo_draws);
-
-  r.spectrum_hz = spectrum_on_timestamps(r.time_s, r.te_arcsec, options.window, analyser);
-
-  // Order spectrum over the whole output revolutions only, so output orders fall on bins.
-  const double whole_revs = std::floor(r.output_revolutions);
-  const double end_angle = whole_revs * kTwoPi;
-  std::size_t last = 0;
-  while (last + 1 < n && angle[last + 1] <= end_angle) ++last;
-  std::vector<double> a(angle.begin(), angle.begin() + static_cast<std::ptrdiff_t>(last + 1));
-  std::vector<double> te(r.te_arcsec.begin(),
-                         r.te_arcsec.begin() + static_cast<std::ptrdiff_t>(last + 1));
-  if (last + 1 < n && a.back() < end_angle) {  // close the span exactly at whole revolutions
-    const double u = (end_angle - angle[last]) / (angle[last + 1] - angle[last]);
-    a.push_back(end_angle);
-    te.push_back(r.te_arcsec[last] + u * (r.te_arcsec[last + 1] - r.te_arcsec[last]));
-  }
-  double step = 0;
-  auto resampled = analysis::resample_on_angle(a, te, a.size(), &step);
-  resampled.pop_back();
-  const double points_per_rev = kTwoPi / step;
-  const auto orders = analyser.analyse(resampled, points_per_rev, options.window);
-  r.order_output = orders.frequency_hz;
-  r.order_amplitude_arcsec = orders.amplitude;
+  // Order spectrum over the whole output revolutions, so output orders fall on bins.
+  const std::size_t grid_points = grid.size();
+  r.order_points_per_revolution = points_per_revolution;
+  r.order_revolutions = whole;
+  const auto orders = analysis::amplitude_spectrum_in_place(
+      std::move(grid), static_cast<double>(points_per_revolution), options.window);
   r.order_resolution = orders.resolution_hz;
 
   analysis::PeakSearch search;
@@ -245,8 +237,8 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
     named.amplitude_arcsec = p.amplitude;
     // A line's amplitude in a Hann-windowed spectrum of n samples with white noise of standard
     // u per sample: u·√(2Σw²)/Σw = u·√(3/n) (Σw = n/2, Σw² = 3n/8).
-    named.amplitude = linear_figure(p.amplitude, per_sample,
-                                    std::sqrt(3.0 / static_cast<double>(resampled.size())));
+    named.amplitude =
+        linear_figure(p.amplitude, per_sample, std::sqrt(3.0 / static_cast<double>(grid_points)));
     named.name = "unnamed";
     double best = tolerance;
     for (const auto& candidate : names) {
@@ -259,6 +251,8 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
     }
     r.peaks.push_back(named);
   }
+  keep_orders(orders.amplitude, orders.resolution_hz, options.max_order_kept, r.order_output,
+              r.order_amplitude_arcsec);
 
   for (const auto& c : predicted) {
     const double f = std::abs(c.order_input + c.order_output / sense.ratio) * r.input_speed_hz;
@@ -268,6 +262,41 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
     }
   }
   return r;
+}
+
+DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
+                                   std::span<const double> theta_in_rad,
+                                   std::span<const double> theta_out_rad, const GearSense& sense,
+                                   const GearTeeth& teeth,
+                                   std::span<const PredictedComponent> predicted,
+                                   const DynamicTeOptions& options,
+                                   analysis::SpectrumAnalyser& analyser) {
+  sense.validate();
+  const std::size_t n = time_s.size();
+  if (theta_in_rad.size() != n || theta_out_rad.size() != n || n < 8) {
+    throw std::invalid_argument("dynamic TE: time has " + std::to_string(n) + " samples, θ_in " +
+                                std::to_string(theta_in_rad.size()) + ", θ_out " +
+                                std::to_string(theta_out_rad.size()) +
+                                "; expected equal lengths of at least 8");
+  }
+  // As many grid points per revolution as the record has samples (a 2·3·5-smooth count).
+  const double turned = std::abs(sense.model_output_angle(theta_out_rad[n - 1]) -
+                                 sense.model_output_angle(theta_out_rad[0])) /
+                        kTwoPi;
+  if (turned < 1.0) {
+    throw std::invalid_argument("dynamic TE: output revolutions = " + std::to_string(turned) +
+                                "; expected at least one whole output revolution");
+  }
+  DynamicTeRecordShape shape;
+  shape.output_direction = theta_out_rad[n - 1] < theta_out_rad[0] ? -1.0 : 1.0;
+  shape.points_per_revolution = smooth_size_at_least(
+      static_cast<std::size_t>(std::ceil(static_cast<double>(n - 1) / turned)));
+  shape.max_revolutions = static_cast<std::size_t>(std::floor(turned));
+  shape.trace_stride = 1;
+  shape.trace_capacity = n;
+  DynamicTeRecord record(sense, shape);
+  for (std::size_t i = 0; i < n; ++i) record.add_kept(time_s[i], theta_in_rad[i], theta_out_rad[i]);
+  return record.finish(teeth, predicted, options, analyser);
 }
 
 nlohmann::json to_json(const DynamicTeResult& r) {

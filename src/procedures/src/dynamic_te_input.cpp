@@ -2,11 +2,30 @@
 
 namespace wavebench::procedures {
 
+bool DynamicTeSampleFilter::keep(const storage::SyncSample& s) noexcept {
+  counts_.missed_cycles += s.missed_before;
+  if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) {
+    ++counts_.skipped_invalid;
+    return false;
+  }
+  if (!first_ && s.receive_time_ns <= counts_.last_receive_time_ns) {
+    ++counts_.skipped_out_of_order;
+    return false;
+  }
+  if (!first_ && !((s.theta_out_rad - last_kept_out_) * direction_ > 0)) {
+    ++counts_.skipped_not_advancing;
+    return false;
+  }
+  last_kept_out_ = s.theta_out_rad;
+  if (first_) {
+    counts_.first_receive_time_ns = s.receive_time_ns;
+    first_ = false;
+  }
+  counts_.last_receive_time_ns = s.receive_time_ns;
+  return true;
+}
+
 DynamicTeInput dynamic_te_input(std::span<const storage::SyncSample> samples) {
-  DynamicTeInput in;
-  // The way the output turns over the record, from its first and last angles: a sample whose
-  // output angle does not advance that way (an encoder value repeated by a late or stale PDO)
-  // is skipped and counted, instead of stopping the order analysis of a whole run.
   double first_out = 0, last_out = 0;
   bool any = false;
   for (const auto& s : samples) {
@@ -15,36 +34,15 @@ DynamicTeInput dynamic_te_input(std::span<const storage::SyncSample> samples) {
     last_out = s.theta_out_rad;
     any = true;
   }
-  const double direction = last_out < first_out ? -1.0 : 1.0;
-  bool first = true;
-  std::int64_t t0 = 0, last = 0;
-  double last_kept_out = 0;
+  DynamicTeSampleFilter filter(last_out < first_out ? -1.0 : 1.0);
+  DynamicTeInput in;
   for (const auto& s : samples) {
-    in.missed_cycles += s.missed_before;
-    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) {
-      ++in.skipped_invalid;
-      continue;
-    }
-    if (!first && s.receive_time_ns <= last) {
-      ++in.skipped_out_of_order;
-      continue;
-    }
-    if (!first && !((s.theta_out_rad - last_kept_out) * direction > 0)) {
-      ++in.skipped_not_advancing;
-      continue;
-    }
-    last_kept_out = s.theta_out_rad;
-    if (first) {
-      t0 = s.receive_time_ns;
-      first = false;
-    }
-    last = s.receive_time_ns;
-    if (in.time_s.empty()) in.first_receive_time_ns = t0;
-    in.last_receive_time_ns = last;
-    in.time_s.push_back(1e-9 * static_cast<double>(s.receive_time_ns - t0));
+    if (!filter.keep(s)) continue;
+    in.time_s.push_back(filter.time_s(s));
     in.theta_in_rad.push_back(s.theta_in_rad);
     in.theta_out_rad.push_back(s.theta_out_rad);
   }
+  static_cast<DynamicTeSampleCounts&>(in) = filter.counts();
   return in;
 }
 

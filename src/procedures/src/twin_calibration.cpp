@@ -9,32 +9,41 @@
 
 namespace wavebench::procedures {
 
-TwinResidual twin_residual(std::span<const double> time_s, std::span<const double> measured_te_rad,
-                           std::span<const double> predicted_te_rad, analysis::Window window,
-                           analysis::SpectrumAnalyser& analyser) {
-  const std::size_t n = time_s.size();
-  if (measured_te_rad.size() != n || predicted_te_rad.size() != n || n < 8) {
-    throw std::invalid_argument("twin residual: time has " + std::to_string(n) +
-                                " samples, measured " + std::to_string(measured_te_rad.size()) +
-                                ", predicted " + std::to_string(predicted_te_rad.size()) +
-                                "; expected equal lengths of at least 8");
+void TwinResidualSum::add(double measured_te_rad, double predicted_te_rad) {
+  const double v = (measured_te_rad - predicted_te_rad) * kArcsecPerRad;
+  sum_ += v;
+  squares_ += v * v;
+  lo_ = n_ == 0 ? v : std::min(lo_, v);
+  hi_ = n_ == 0 ? v : std::max(hi_, v);
+  ++n_;
+}
+
+TwinResidual TwinResidualSum::result() const {
+  if (n_ < 8) {
+    throw std::invalid_argument("twin residual: " + std::to_string(n_) +
+                                " samples with a measured and a predicted TE; expected at least 8");
   }
   TwinResidual r;
-  r.residual_arcsec.resize(n);
-  double sum = 0, squares = 0, lo = INFINITY, hi = -INFINITY;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double v = (measured_te_rad[i] - predicted_te_rad[i]) * kArcsecPerRad;
-    r.residual_arcsec[i] = v;
-    sum += v;
-    squares += v * v;
-    lo = std::min(lo, v);
-    hi = std::max(hi, v);
-  }
-  r.mean_arcsec = sum / static_cast<double>(n);
-  r.rms_arcsec = std::sqrt(squares / static_cast<double>(n));
-  r.p2p_arcsec = hi - lo;
-  r.spectrum_hz = spectrum_on_timestamps(time_s, r.residual_arcsec, window, analyser);
+  r.samples = n_;
+  r.mean_arcsec = sum_ / static_cast<double>(n_);
+  r.rms_arcsec = std::sqrt(squares_ / static_cast<double>(n_));
+  r.p2p_arcsec = hi_ - lo_;
   return r;
+}
+
+TwinResidual twin_residual(std::span<const double> measured_te_rad,
+                           std::span<const double> predicted_te_rad) {
+  if (measured_te_rad.size() != predicted_te_rad.size()) {
+    throw std::invalid_argument("twin residual: measured has " +
+                                std::to_string(measured_te_rad.size()) + " samples, predicted " +
+                                std::to_string(predicted_te_rad.size()) +
+                                "; expected equal lengths of at least 8");
+  }
+  TwinResidualSum sum;
+  for (std::size_t i = 0; i < measured_te_rad.size(); ++i) {
+    sum.add(measured_te_rad[i], predicted_te_rad[i]);
+  }
+  return sum.result();
 }
 
 double HarmonicFit::evaluate(double theta1, double theta2) const {
@@ -84,24 +93,43 @@ HarmonicRegression fit_te_harmonics(std::span<const double> theta1_rad,
       }
     }
   }
-  const auto rows = static_cast<Eigen::Index>(n);
-  Eigen::MatrixXd a(rows, static_cast<Eigen::Index>(unknowns));
-  Eigen::VectorXd b(rows);
-  for (Eigen::Index i = 0; i < rows; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    a(i, 0) = 1.0;
-    for (std::size_t j = 0; j < orders.size(); ++j) {
-      const double x =
-          orders[j].order_input * theta1_rad[k] + orders[j].order_output * theta2_rad[k];
-      a(i, static_cast<Eigen::Index>(1 + 2 * j)) = std::sin(x);
-      a(i, static_cast<Eigen::Index>(2 + 2 * j)) = std::cos(x);
+  // Least squares a block of rows at a time (a run of hours has millions of rows, and the
+  // whole matrix would be 8·unknowns bytes per row twice over): the triangular factor of
+  // [A | b] is carried from block to block (R of [R_prev; block] is R of all rows so far). At
+  // the end min‖Ax − b‖² = min‖R x − c‖² + ρ², solved with column pivoting as before so that
+  // a basis the rows cannot tell apart still gives the basic solution.
+  const auto p = static_cast<Eigen::Index>(unknowns);
+  constexpr Eigen::Index kBlock = 4096;
+  Eigen::MatrixXd carried(0, p + 1);
+  Eigen::MatrixXd stacked;
+  for (std::size_t from = 0; from < n; from += static_cast<std::size_t>(kBlock)) {
+    const auto rows = static_cast<Eigen::Index>(std::min<std::size_t>(kBlock, n - from));
+    stacked.resize(carried.rows() + rows, p + 1);
+    stacked.topRows(carried.rows()) = carried;
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const std::size_t k = from + static_cast<std::size_t>(i);
+      auto row = stacked.row(carried.rows() + i);
+      row(0) = 1.0;
+      for (std::size_t j = 0; j < orders.size(); ++j) {
+        const double x =
+            orders[j].order_input * theta1_rad[k] + orders[j].order_output * theta2_rad[k];
+        row(static_cast<Eigen::Index>(1 + 2 * j)) = std::sin(x);
+        row(static_cast<Eigen::Index>(2 + 2 * j)) = std::cos(x);
+      }
+      for (std::size_t r = 0; r < regressors.size(); ++r) {
+        row(static_cast<Eigen::Index>(harmonic_unknowns + r)) = regressors[r][k];
+      }
+      row(p) = te_rad[k];
     }
-    for (std::size_t r = 0; r < regressors.size(); ++r) {
-      a(i, static_cast<Eigen::Index>(harmonic_unknowns + r)) = regressors[r][k];
-    }
-    b(i) = te_rad[k];
+    Eigen::HouseholderQR<Eigen::MatrixXd> qr(stacked);
+    const Eigen::Index kept = std::min<Eigen::Index>(stacked.rows(), p + 1);
+    carried = qr.matrixQR().topRows(kept).triangularView<Eigen::Upper>();
   }
-  const Eigen::VectorXd x = a.colPivHouseholderQr().solve(b);
+  const Eigen::MatrixXd r_top = carried.topLeftCorner(std::min(carried.rows(), p), p);
+  const Eigen::VectorXd qtb = carried.col(p).head(r_top.rows());
+  const Eigen::VectorXd x = r_top.colPivHouseholderQr().solve(qtb);
+  const double rho = carried.rows() > p ? carried(p, p) : 0.0;
+  const double squares = (r_top * x - qtb).squaredNorm() + rho * rho;
   HarmonicFit fit;
   fit.offset_rad = x(0);
   for (std::size_t j = 0; j < orders.size(); ++j) {
@@ -111,7 +139,7 @@ HarmonicRegression fit_te_harmonics(std::span<const double> theta1_rad,
     fit.harmonics.push_back({orders[j].name, orders[j].order_input, orders[j].order_output,
                              std::hypot(s, c), std::atan2(c, s)});
   }
-  fit.rms_residual_rad = std::sqrt((a * x - b).squaredNorm() / static_cast<double>(n));
+  fit.rms_residual_rad = std::sqrt(squares / static_cast<double>(n));
   HarmonicRegression out{std::move(fit), {}};
   for (std::size_t r = 0; r < regressors.size(); ++r) {
     out.coefficients.push_back(x(static_cast<Eigen::Index>(harmonic_unknowns + r)));

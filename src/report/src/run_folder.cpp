@@ -2,9 +2,12 @@
 
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <stdexcept>
 
+#include "wavebench/report/dynamic_plot_data.hpp"
+#include "wavebench/report/figure.hpp"
+#include "wavebench/report/sample_log_scan.hpp"
+#include "wavebench/report/twin_csv_envelope.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace wavebench::report {
@@ -26,67 +29,40 @@ std::optional<json> read_json_object(const fs::path& path, std::vector<std::stri
   return j;
 }
 
-std::vector<std::string> split(const std::string& line, char sep) {
-  std::vector<std::string> out;
-  std::string cell;
-  std::istringstream in(line);
-  while (std::getline(in, cell, sep)) out.push_back(cell);
-  if (!line.empty() && line.back() == sep) out.emplace_back();
-  return out;
-}
-
-std::optional<TwinTrace> read_twin_csv(const fs::path& path, std::vector<std::string>& notes) {
-  std::error_code ec;
-  if (!fs::is_regular_file(path, ec)) return std::nullopt;
-  std::ifstream in(path);
-  std::string line;
-  if (!std::getline(in, line)) {
-    notes.push_back("twin.csv is empty; the twin plot is left out");
-    return std::nullopt;
+// The first pass through samples.wbs: the facts, the gear sense fit and the sizes the plots'
+// passes need, a page at a time.
+SampleLogFacts count_sample_log(const fs::path& path, GearSenseFit& fit,
+                                std::vector<std::string>& notes) {
+  const auto head = storage::read_sample_log_page(path, 0, 0);
+  SampleLogFacts facts;
+  auto speeds = std::make_shared<InputSpeedSummary>(head.total_records);
+  bool any_angles = false;
+  std::int64_t last_angle_ns = 0;
+  std::uint64_t record = 0;
+  facts.records = scan_sample_log(path, 0, head.total_records, [&](const storage::SyncSample& s) {
+    const std::uint64_t r = record++;
+    facts.missed += s.missed_before;
+    if (!s.complete()) ++facts.incomplete;
+    fit.add(s);
+    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) return;
+    // As dynamic_trace takes them: a time after the previous one's (the same seconds).
+    const double t = 1e-9 * static_cast<double>(s.receive_time_ns);
+    if (any_angles && t <= 1e-9 * static_cast<double>(last_angle_ns)) return;
+    any_angles = true;
+    last_angle_ns = s.receive_time_ns;
+    ++facts.angle_samples;
+    speeds->add(r, t, s.theta_in_rad);
+  });
+  facts.input_speeds = std::move(speeds);
+  if (head.torn_tail_bytes > 0) {
+    notes.push_back("samples.wbs ends in a torn record (" + std::to_string(head.torn_tail_bytes) +
+                    " bytes ignored)");
   }
-  if (!line.empty() && line.back() == '\r') line.pop_back();
-  const auto header = split(line, ',');
-  TwinTrace trace;
-  std::vector<std::vector<double>*> columns(header.size(), nullptr);
-  for (std::size_t i = 0; i < header.size(); ++i) {
-    if (header[i] == "t") columns[i] = &trace.t;
-    if (header[i] == "measured_te_arcsec") columns[i] = &trace.measured_te_arcsec;
-    if (header[i] == "predicted_te_arcsec") columns[i] = &trace.predicted_te_arcsec;
-    if (header[i] == "residual_arcsec") columns[i] = &trace.residual_arcsec;
+  if (facts.records < head.total_records) {
+    notes.push_back("samples.wbs: record " + std::to_string(facts.records) +
+                    " failed its checksum; samples after it are left out");
   }
-  std::size_t bad_rows = 0;
-  while (std::getline(in, line)) {
-    if (!line.empty() && line.back() == '\r') line.pop_back();
-    if (line.empty()) continue;
-    const auto cells = split(line, ',');
-    if (cells.size() != header.size()) {
-      ++bad_rows;
-      continue;
-    }
-    std::vector<double> values(cells.size());
-    bool ok = true;
-    for (std::size_t i = 0; i < cells.size() && ok; ++i) {
-      if (!columns[i]) continue;
-      char* end = nullptr;
-      values[i] = std::strtod(cells[i].c_str(), &end);
-      ok = end != cells[i].c_str() && *end == '\0';
-    }
-    if (!ok) {
-      ++bad_rows;
-      continue;
-    }
-    for (std::size_t i = 0; i < cells.size(); ++i) {
-      if (columns[i]) columns[i]->push_back(values[i]);
-    }
-  }
-  if (bad_rows > 0) {
-    notes.push_back("twin.csv: " + std::to_string(bad_rows) + " malformed rows skipped");
-  }
-  if (trace.t.empty()) {
-    notes.push_back("twin.csv has no usable rows (needs column t); the twin plot is left out");
-    return std::nullopt;
-  }
-  return trace;
+  return facts;
 }
 
 // A section of results.json by its name in the schema (docs/formats/results.schema.json), of
@@ -159,30 +135,23 @@ RunFolder read_run_folder(const fs::path& dir, bool read_samples) {
   } else if (!fs::exists(dir / "results.json", ec)) {
     run.notes.push_back("no results.json; the result tables are left out");
   }
+  GearSenseFit fit;
   if (!read_samples) {
     // A summary reads the JSON files only.
-  } else if (fs::exists(dir / "samples.wbs", ec)) {
+  } else if (fs::exists(run.samples_path(), ec)) {
     try {
-      auto log = storage::read_sample_log(dir / "samples.wbs");
-      run.samples = std::move(log.samples);
-      if (log.torn_tail_bytes > 0) {
-        run.notes.push_back("samples.wbs ends in a torn record (" +
-                            std::to_string(log.torn_tail_bytes) + " bytes ignored)");
-      }
-      if (log.corrupt_record) {
-        run.notes.push_back("samples.wbs: record " + std::to_string(log.corrupt_at_index) +
-                            " failed its checksum; samples after it are left out");
-      }
+      run.sample_log = count_sample_log(run.samples_path(), fit, run.notes);
     } catch (const std::exception& e) {
       run.notes.push_back(std::string("samples.wbs unreadable: ") + e.what());
     }
   } else {
     run.notes.push_back("no samples.wbs; plots of the raw record are left out");
   }
-  run.twin = read_twin_csv(dir / "twin.csv", run.notes);
+  if (read_samples)
+    run.twin = read_twin_csv_envelope(dir / "twin.csv", kEnvelopeColumns, run.notes);
   run.sense = sense_from_results(run.results);
-  if (!run.sense && !run.samples.empty()) {
-    run.sense = estimate_gear_sense(run.samples);
+  if (!run.sense && run.sample_log && run.sample_log->records > 0) {
+    run.sense = fit.result();
     run.sense_estimated = run.sense.has_value();
     if (run.sense_estimated) {
       run.notes.push_back("gear ratio not in results.json; estimated from the samples as " +
@@ -214,27 +183,25 @@ const json* twin_section(const json& results) {
   return section(results, "twin", json::value_t::object);
 }
 
-std::optional<procedures::GearSense> estimate_gear_sense(
-    const std::vector<storage::SyncSample>& samples) {
-  double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0;
-  double lo = 0, hi = 0;
-  for (const auto& s : samples) {
-    if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) continue;
-    const double x = s.theta_out_rad, y = s.theta_in_rad;
-    if (n == 0) lo = hi = x;
-    lo = std::min(lo, x);
-    hi = std::max(hi, x);
-    n += 1;
-    sx += x;
-    sy += y;
-    sxx += x * x;
-    sxy += x * y;
-  }
+void GearSenseFit::add(const storage::SyncSample& s) {
+  if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) return;
+  const double x = s.theta_out_rad, y = s.theta_in_rad;
+  if (n_ == 0) lo_ = hi_ = x;
+  lo_ = std::min(lo_, x);
+  hi_ = std::max(hi_, x);
+  n_ += 1;
+  sx_ += x;
+  sy_ += y;
+  sxx_ += x * x;
+  sxy_ += x * y;
+}
+
+std::optional<procedures::GearSense> GearSenseFit::result() const {
   // Below about a degree of output travel the TE itself would bend the slope.
-  if (n < 3 || hi - lo < 0.02) return std::nullopt;
-  const double var = sxx - sx * sx / n;
+  if (n_ < 3 || hi_ - lo_ < 0.02) return std::nullopt;
+  const double var = sxx_ - sx_ * sx_ / n_;
   if (!(var > 0)) return std::nullopt;
-  const double slope = (sxy - sx * sy / n) / var;  // s·N
+  const double slope = (sxy_ - sx_ * sy_ / n_) / var;  // s·N
   double ratio = std::abs(slope);
   if (!(ratio > 0) || !std::isfinite(ratio)) return std::nullopt;
   const double half_steps = std::round(ratio * 2) / 2;
@@ -243,6 +210,13 @@ std::optional<procedures::GearSense> estimate_gear_sense(
   sense.ratio = ratio;
   sense.direction_sign = slope < 0 ? -1 : 1;
   return sense;
+}
+
+std::optional<procedures::GearSense> estimate_gear_sense(
+    const std::vector<storage::SyncSample>& samples) {
+  GearSenseFit fit;
+  for (const auto& s : samples) fit.add(s);
+  return fit.result();
 }
 
 }  // namespace wavebench::report

@@ -8,6 +8,7 @@
 
 #include "wavebench/procedures/dynamic_te_analysis.hpp"
 #include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/report/dynamic_plot_data.hpp"
 
 namespace wavebench::report {
 namespace {
@@ -164,42 +165,49 @@ std::optional<Figure> static_te_figure(const json& passes) {
   return fig;
 }
 
-std::optional<Figure> dynamic_te_figure(const DynamicTrace& trace) {
-  if (trace.te_arcsec.empty()) return std::nullopt;
+std::optional<Figure> dynamic_te_figure(const DynamicPlotData& data) {
+  if (data.te_by_time.t.empty() || data.te_by_time.series.empty()) return std::nullopt;
   Figure fig(2, 1, "Dynamic TE");
-  auto x = trace.output_angle_deg, y = trace.te_arcsec;
-  thin(x, y);
+  const auto drawn = [](const analysis::DecimatedTrace& d) {
+    return d.full_resolution ? std::string()
+                             : " - min/max per pixel column of " +
+                                   std::to_string(d.samples_in_range) + " samples";
+  };
   Axes& angle = fig.axes(0, 0);
-  angle.line(x, y);
-  angle.title = "TE against output angle (steady speed)";
+  angle.line(data.te_by_angle.t, data.te_by_angle.series.at(0));
+  angle.title = "TE against output angle (steady speed)" + drawn(data.te_by_angle);
   angle.x_label = "output angle [deg]";
   angle.y_label = "TE [arcsec]";
-  auto t = trace.time_s;
-  y = trace.te_arcsec;
-  thin(t, y);
   Axes& time = fig.axes(1, 0);
-  time.line(t, y, {}, palette(2));
-  time.title = "TE against time";
+  time.line(data.te_by_time.t, data.te_by_time.series.at(0), {}, palette(2));
+  time.title = "TE against time" + drawn(data.te_by_time);
   time.x_label = "t [s]";
   time.y_label = "TE [arcsec]";
   return fig;
 }
 
-std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>& trace,
-                                              const json& dynamic, double ratio,
-                                              analysis::SpectrumAnalyser& analyser) {
+std::optional<Figure> dynamic_spectrum_figure(const DynamicPlotData* data, const json& dynamic,
+                                              double ratio) {
   const auto peaks_it = dynamic.find("peaks");
   const bool have_peaks = peaks_it != dynamic.end() && peaks_it->is_array() &&
                           std::any_of(peaks_it->begin(), peaks_it->end(), [](const json& p) {
                             return number(p, "frequency_hz") && number(p, "amplitude_arcsec");
                           });
-  if (!trace && !have_peaks) return std::nullopt;
-  double f_in = number(dynamic, "input_speed_hz").value_or(trace ? trace->input_speed_hz : 0.0);
+  const analysis::AmplitudeSpectrum* spectrum = data && data->spectrum ? &*data->spectrum : nullptr;
+  if (!spectrum && !have_peaks) return std::nullopt;
+  double f_in = number(dynamic, "input_speed_hz").value_or(data ? data->input_speed_hz : 0.0);
   const double f_out = ratio > 0 ? f_in / ratio : 0;
 
   Figure fig(f_out > 0 ? 2 : 1, 1, "Dynamic TE spectrum");
   Axes& hz = fig.axes(0, 0);
   hz.title = "Amplitude spectrum with named peaks";
+  if (spectrum && data->spectrum_segments > 0) {
+    char buf[120];
+    std::snprintf(buf, sizeof buf,
+                  " (averaged over %zu Hann segments of %zu samples, half overlapping)",
+                  data->spectrum_segments, spectrum->samples);
+    hz.title += buf;
+  }
   hz.x_label = "frequency [Hz]";
   hz.y_label = "TE amplitude [arcsec]";
   hz.log_y = true;
@@ -207,12 +215,11 @@ std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>&
   // Nyquist: only a log frequency axis shows them all.
   hz.log_x = true;
   std::vector<double> f, a;
-  if (trace && trace->time_s.size() >= 16) {
-    const auto s = procedures::spectrum_on_timestamps(trace->time_s, trace->te_arcsec,
-                                                      analysis::Window::kHann, analyser);
-    for (std::size_t i = 1; i < s.frequency_hz.size(); ++i) {  // DC says nothing on a log axis
-      f.push_back(s.frequency_hz[i]);
-      a.push_back(s.amplitude[i]);
+  if (spectrum) {
+    for (std::size_t i = 1; i < spectrum->frequency_hz.size();
+         ++i) {  // DC says nothing on a log axis
+      f.push_back(spectrum->frequency_hz[i]);
+      a.push_back(spectrum->amplitude[i]);
     }
     hz.line(f, a);
   }

@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/report/dynamic_plot_data.hpp"
 #include "wavebench/report/endurance_section.hpp"
 #include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_tables.hpp"
@@ -35,14 +36,9 @@ std::string short_hash(const std::string& hash) {
   return hash.size() > 16 ? hash.substr(0, 16) + "\u2026" : hash;
 }
 
-std::string sample_facts(const RunFolder& run) {
-  std::uint64_t missed = 0, incomplete = 0;
-  for (const auto& s : run.samples) {
-    missed += s.missed_before;
-    if (!s.complete()) ++incomplete;
-  }
-  return std::to_string(run.samples.size()) + " SYNC samples, " + std::to_string(missed) +
-         " cycles missed, " + std::to_string(incomplete) + " incomplete";
+std::string sample_facts(const SampleLogFacts& log) {
+  return std::to_string(log.records) + " SYNC samples, " + std::to_string(log.missed) +
+         " cycles missed, " + std::to_string(log.incomplete) + " incomplete";
 }
 
 // "forward 60 N*m", "mesh": what an entry of a figure group is, from whichever of its
@@ -94,7 +90,8 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
                     false}});
   facts.push_back({"software version", {run.field("software_version", "\u2013"), {}, false}});
   facts.push_back({"config hash", {short_hash(run.field("config_hash", "\u2013")), {}, false}});
-  if (!run.samples.empty()) facts.push_back({"samples", {sample_facts(run), {}, false}});
+  const bool have_samples = run.sample_log && run.sample_log->records > 0;
+  if (have_samples) facts.push_back({"samples", {sample_facts(*run.sample_log), {}, false}});
   if (run.sense) {
     facts.push_back({"gear ratio N, output sign",
                      {general(run.sense->ratio) + ", " + std::to_string(run.sense->direction_sign) +
@@ -159,17 +156,38 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
     add_table(page, t);
     // The analysed trace from the results when they carry it; the steady part of the
     // samples otherwise. The spectrum in Hz wants every sample when there are samples.
-    std::optional<DynamicTrace> analysed = dynamic_trace(*dyn), trace;
-    if (run.sense && !run.samples.empty()) trace = dynamic_trace(run.samples, *run.sense);
-    if (!trace) trace = analysed;
-    if (const auto& shown = analysed ? analysed : trace) {
+    const double ratio = run.sense ? run.sense->ratio : 0;
+    std::optional<DynamicPlotData> analysed, recorded;
+    if (const auto carried = dynamic_trace(*dyn)) {
+      analysed = reduce_dynamic_trace(*carried, ratio, kEnvelopeColumns, analyser);
+      // A long run's trace is already the min/max of blocks of its samples: the envelope is of
+      // the record's samples, not of the trace's points (the plot's title counts them).
+      const json* trace = dyn->contains("trace") ? &(*dyn)["trace"] : nullptr;
+      if (trace && trace->is_object() && trace->value("samples_per_block", 1) > 1 &&
+          dyn->contains("samples") && (*dyn)["samples"].is_number_unsigned()) {
+        const auto samples = (*dyn)["samples"].get<std::size_t>();
+        for (auto* d : {&analysed->te_by_angle, &analysed->te_by_time}) {
+          d->samples_in_range = samples;
+          d->full_resolution = false;
+        }
+      }
+    }
+    if (run.sense && have_samples) {
+      try {
+        recorded = dynamic_plot_data(run.samples_path(), *run.sample_log, *run.sense,
+                                     kEnvelopeColumns, analyser);
+      } catch (const std::exception& e) {  // changed since it was first read
+        run.notes.push_back(std::string("samples.wbs unreadable for the TE plots: ") + e.what());
+      }
+    }
+    if (const auto& shown = analysed ? analysed : recorded) {
       if (auto fig = dynamic_te_figure(*shown)) {
         report.plots.push_back(write_plot(*fig, out, "dynamic_te.png", 900));
         page.image("dynamic_te.png", "Dynamic TE against output angle and time");
       }
     }
-    if (auto fig =
-            dynamic_spectrum_figure(trace, *dyn, run.sense ? run.sense->ratio : 0, analyser)) {
+    const auto& spectral = recorded ? recorded : analysed;
+    if (auto fig = dynamic_spectrum_figure(spectral ? &*spectral : nullptr, *dyn, ratio)) {
       report.plots.push_back(write_plot(*fig, out, "spectrum.png", 900));
       page.image("spectrum.png", "Dynamic TE spectrum with named peaks");
     }
@@ -204,7 +222,14 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
   std::optional<TorqueTwistCurve> curve;
   if (fit) curve = torque_twist_from_results(*fit);
   if (!curve && (fit || run.field("procedure") == "lost-motion") && run.sense) {
-    curve = torque_twist_from_samples(run.samples, *run.sense);
+    if (have_samples) {
+      try {
+        curve = torque_twist_from_log(run.samples_path(), run.sample_log->records, *run.sense);
+      } catch (const std::exception& e) {
+        run.notes.push_back(std::string("samples.wbs unreadable for the torque-twist plot: ") +
+                            e.what());
+      }
+    }
   }
   if (curve) {
     if (auto fig = hysteresis_figure(*curve, fit)) {

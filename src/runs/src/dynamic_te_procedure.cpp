@@ -1,10 +1,13 @@
 #include "wavebench/runs/dynamic_te_procedure.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <numbers>
+#include <optional>
 #include <sstream>
 
+#include "wavebench/procedures/dynamic_te_record.hpp"
 #include "wavebench/procedures/gear_sense.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/sample_recorder.hpp"
@@ -13,7 +16,30 @@ namespace wavebench::runs {
 
 namespace {
 constexpr double kTwoPi = 2 * std::numbers::pi;
-constexpr std::size_t kTracePoints = 4000;  // TE trace kept in results.json for plots
+constexpr std::size_t kTracePoints = 4000;
+// The order spectra shown: up to a little beyond the highest named harmonic of the mesh.
+constexpr double kMaxOrderShown = 3.5;  // TE trace kept in results.json for plots
+// The order spectrum's grid at most (8 MiB, 17 output revolutions at 60,000 samples each):
+// its transform holds the grid and FFTW's own tables of the same size, so a longer grid would
+// make a run's memory grow with its length. A longer run's order spectrum is over its first
+// whole revolutions (order_spectrum.revolutions says how many); the Welch spectrum, the
+// figures and the trace are over all of them.
+constexpr std::size_t kMaxOrderGridPoints = std::size_t{1} << 20;
+
+// Feeds the record from the acquisition thread while recording.
+class DynamicTeRecorder final : public bench::SampleObserver {
+ public:
+  explicit DynamicTeRecorder(procedures::DynamicTeRecord& record) : record_(record) {}
+  void start() { recording_.store(true, std::memory_order_release); }
+  void stop() { recording_.store(false, std::memory_order_release); }
+  void on_sample(const storage::SyncSample& sample) noexcept override {
+    if (recording_.load(std::memory_order_acquire)) record_.add(sample);
+  }
+
+ private:
+  procedures::DynamicTeRecord& record_;
+  std::atomic<bool> recording_{false};
+};
 }  // namespace
 
 namespace {
@@ -96,8 +122,9 @@ nlohmann::json DynamicTeOutcome::to_json() const {
                  {"last_receive_time_ns", last_receive_time_ns}};
   j["teeth"] = {
       {"z_flex", teeth.z_flex}, {"z_circ", teeth.z_circ}, {"wave_number", teeth.wave_number}};
+  // The record's own trace: at most two points (min and max) per block of samples.
   const std::size_t n = result.te_arcsec.size();
-  const std::size_t stride = std::max<std::size_t>(1, n / kTracePoints);
+  const std::size_t stride = 1;
   nlohmann::json t = nlohmann::json::array(), a = nlohmann::json::array(),
                  te = nlohmann::json::array();
   for (std::size_t i = 0; i < n; i += stride) {
@@ -109,13 +136,19 @@ nlohmann::json DynamicTeOutcome::to_json() const {
   j["trace"] = {{"time_s", t}, {"output_angle_deg", a}, {"te_arcsec", te}};
   // The order spectrum up to a little beyond the highest named harmonic of the mesh.
   nlohmann::json orders = nlohmann::json::array(), amps = nlohmann::json::array();
-  const double max_order = 3.5 * std::max(teeth.z_flex, 1);
+  const double max_order = kMaxOrderShown * std::max(teeth.z_flex, 1);
   for (std::size_t i = 0; i < result.order_output.size() && result.order_output[i] <= max_order;
        ++i) {
     orders.push_back(result.order_output[i]);
     amps.push_back(result.order_amplitude_arcsec[i]);
   }
-  j["order_spectrum"] = {{"order_output", orders}, {"amplitude_arcsec", amps}};
+  j["order_spectrum"] = {{"order_output", orders},
+                         {"amplitude_arcsec", amps},
+                         {"revolutions", result.order_revolutions}};
+  j["order_spectrum_averaged"] = {{"order_output", result.averaged_order_output},
+                                  {"amplitude_arcsec", result.averaged_amplitude_arcsec},
+                                  {"revolutions", result.averaged_revolutions}};
+  j["trace"]["samples_per_block"] = result.trace_stride;
   return j;
 }
 
@@ -150,8 +183,23 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   // A little beyond the whole revolutions so that the analysis can close them exactly.
   const double span = o.output_revolutions * kTwoPi * 1.005;
 
-  SampleRecorder recorder;
-  ObserverRegistration registration(bench, recorder);
+  // The record is reduced as it is acquired (procedures/dynamic_te_record.hpp): its grid is
+  // the only thing that grows with the run, one double per sample.
+  const double expected_samples = o.output_revolutions * 1.005 * output_rev_s / d.sync_period_s;
+  procedures::DynamicTeRecordShape shape;
+  shape.output_direction = d.sense.direction_sign;  // the input turns forward
+  shape.points_per_revolution = procedures::smooth_size_at_least(
+      static_cast<std::size_t>(std::ceil(output_rev_s / d.sync_period_s)));
+  shape.max_revolutions = std::clamp<std::size_t>(
+      static_cast<std::size_t>(std::floor(span / kTwoPi)), 1,
+      std::max<std::size_t>(1, kMaxOrderGridPoints / shape.points_per_revolution));
+  shape.trace_stride = std::max<std::size_t>(
+      1, static_cast<std::size_t>(expected_samples / static_cast<double>(kTracePoints)));
+  shape.trace_capacity = 2 * (kTracePoints + 16);
+  procedures::DynamicTeRecord record(d.sense, shape);
+  DynamicTeRecorder recorder(record);
+  std::optional<ObserverRegistration> registration;
+  registration.emplace(bench, recorder);
   if (progress) progress("dynamic run-in", 0);
   bench.set_brake_torque(o.load_nm);
   bench.run_input_velocity(omega_in);
@@ -174,6 +222,7 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
       },
       1.5 * expected_s + 10);
   recorder.stop();
+  registration.reset();
   bench.stop_motion();
   bench.set_brake_torque(0);
   if (!done) {
@@ -184,14 +233,14 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
 
   if (progress) progress("dynamic analysis", 0.95);
   DynamicTeOutcome out;
-  const auto input = procedures::dynamic_te_input(recorder.samples());
-  out.samples = recorder.samples().size();
-  out.skipped_invalid = input.skipped_invalid;
-  out.skipped_out_of_order = input.skipped_out_of_order;
-  out.skipped_not_advancing = input.skipped_not_advancing;
-  out.missed_cycles = input.missed_cycles;
-  out.first_receive_time_ns = input.first_receive_time_ns;
-  out.last_receive_time_ns = input.last_receive_time_ns;
+  const auto& counts = record.counts();
+  out.samples = record.samples_offered();
+  out.skipped_invalid = counts.skipped_invalid;
+  out.skipped_out_of_order = counts.skipped_out_of_order;
+  out.skipped_not_advancing = counts.skipped_not_advancing;
+  out.missed_cycles = counts.missed_cycles;
+  out.first_receive_time_ns = counts.first_receive_time_ns;
+  out.last_receive_time_ns = counts.last_receive_time_ns;
   out.teeth = gear_teeth(d.twin_gear, d.sense.ratio);
   const auto predicted = predicted_components(d.twin_gear, out.teeth);
   procedures::DynamicTeOptions analysis;
@@ -199,9 +248,9 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   analysis.harmonics = o.harmonics;
   analysis.input_resolution_rad = d.input_encoder_resolution_rad;
   analysis.output_resolution_rad = d.output_encoder_resolution_rad;
+  analysis.max_order_kept = kMaxOrderShown * std::max(out.teeth.z_flex, 1);
   analysis::SpectrumAnalyser analyser;
-  out.result = procedures::analyse_dynamic_te(input.time_s, input.theta_in_rad, input.theta_out_rad,
-                                              d.sense, out.teeth, predicted, analysis, analyser);
+  out.result = record.finish(out.teeth, predicted, analysis, analyser);
   if (progress) progress("dynamic done", 1.0);
   return out;
 }

@@ -237,6 +237,8 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
           };
         }
         twin_options.solver = twin_solver;
+        twin_options.overlay_csv = paths.dir / "twin.csv";
+        if (description.simulated_clock) twin_options.lockstep_backlog = 1024;
         twin_beside =
             std::make_unique<twin::TwinBesideBench>(twin_gear, description.sense, twin_options);
       } catch (const std::exception& e) {
@@ -294,31 +296,25 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
         const auto& live = twin_beside->finish();
         twin_json = twin::to_json(live);
         twin_json["gear"] = twin_source;
-        twin::write_twin_csv(paths.dir / "twin.csv", live.points);
-        analysis::SpectrumAnalyser analyser;
-        if (!twin_json.contains("residual")) {
-          twin_json["residual"] = procedures::to_json(
-              twin::twin_overlay_residual(twin::twin_overlay(live.points), analyser));
-        }
-        // The prediction against what the sensors allow (the residual's white part).
-        const double floor = twin::estimate_te_noise_floor_arcsec(live.points);
-        twin_json["residual"]["noise_floor_arcsec"] = floor;
-        if (floor > 0 && twin_json["residual"].contains("rms_arcsec")) {
-          twin_json["residual"]["rms_over_noise_floor"] =
-              twin_json["residual"]["rms_arcsec"].get<double>() / floor;
+        if (!live.residual) {
+          throw std::runtime_error("twin residual: " + std::to_string(live.points) +
+                                   " points, fewer than 8 with a measured and a predicted TE");
         }
         if (parsed.calibrate_twin && outcome.status == storage::RunStatus::kComplete) {
           report_progress("twin calibration", 0.94);
-          const auto samples = storage::read_sample_log(paths.samples).samples;
+          // The fit's rows are in memory: a long run is calibrated over its first samples.
+          const auto samples =
+              storage::read_sample_log_page(paths.samples, 0, twin::kMaxCalibrationSamples).samples;
           twin::TwinCalibrationOptions calibration_options;
           calibration_options.solver = twin_solver;
           cal = twin::calibrate_twin(
-              twin_gear, description.sense, samples, analyser,
+              twin_gear, description.sense, samples,
               procedure_result.static_result ? &*procedure_result.static_result : nullptr,
               calibration_options);
           twin::write_calibrated_twin_config(paths.dir / "twin-calibrated.yaml", *cal);
           // The calibrated twin's replay, for the run page's before/after plot.
-          twin::write_twin_csv(paths.dir / "twin-calibrated.csv", cal->replay_after);
+          twin::write_replay_csv(paths.dir / "twin-calibrated.csv", cal->calibrated,
+                                 description.sense, samples, cal->solver);
           twin_json["calibration"] = twin::to_json(*cal);
           twin_json["calibration"]["config"] = "twin-calibrated.yaml";
         }

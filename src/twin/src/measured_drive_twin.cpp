@@ -103,7 +103,11 @@ struct MeasuredDriveTwin::Impl {
   procedures::GearSense sense;
   TwinSolverOptions options;
   model::solver::DormandPrince45 integrator;
-  std::vector<TwinPoint> points;
+  // The points not yet taken (take_settled_points): points[k] is point points_front + k.
+  std::deque<TwinPoint> points;
+  std::size_t points_front = 0;
+  bool flushed = false;
+  TwinPoint& point(std::size_t i) { return points[i - points_front]; }
   std::size_t half_width = 0;  // look-ahead: the longer of the two windows
   std::size_t angle_half_width = 0;
   std::vector<double> weights;
@@ -165,7 +169,7 @@ struct MeasuredDriveTwin::Impl {
 
   void record(const model::GearModel& model, std::size_t i) {
     const model::GearOutputs o = model.outputs(drive[i].t, y, d);
-    TwinPoint& p = points[drive[i].point];
+    TwinPoint& p = point(drive[i].point);
     // The model's TE is against the θ1 that drove it; the measurement's against θ_in.
     p.predicted_te_rad = o.te + (drive[i].theta1 - drive[i].theta1_raw) / model.ratio() +
                          options.input_latch_delay_s * o.omega1 / model.ratio();
@@ -190,7 +194,7 @@ struct MeasuredDriveTwin::Impl {
     // of the model's steady state, plus a margin): at rest inside the backlash only the
     // measurement knows where the output floats. An encoder zero offset (any size on a real
     // bench) would otherwise become a twist; the calibration fits it as a TE offset.
-    const double te0 = points[drive[0].point].measured_te_rad;
+    const double te0 = point(drive[0].point).measured_te_rad;
     const auto twist = static_cast<std::size_t>(preload.layout().twist);
     if (options.start_from_measured_output && std::isfinite(te0)) {
       // q = θ1/N − θ2 with θ2 as measured: θ2 = TE + θ_in/N.
@@ -280,7 +284,7 @@ struct MeasuredDriveTwin::Impl {
     if (raw.empty() && next_emit == 0) t_origin = p.t_s;
     double t = p.t_s - t_origin;
     if (!raw.empty() && !(t > raw.back().t)) t = raw.back().t + 1e-7;
-    raw.push_back({t, s.theta_in_rad, s.theta_in_rad, last_load, points.size() - 1});
+    raw.push_back({t, s.theta_in_rad, s.theta_in_rad, last_load, points_front + points.size() - 1});
     observe_torque_noise();
     while (next_emit + half_width < raw_front + raw.size()) emit(false);
     advance(false);
@@ -347,6 +351,15 @@ struct MeasuredDriveTwin::Impl {
   void flush() {
     while (next_emit < raw_front + raw.size()) emit(true);
     advance(true);
+    flushed = true;
+  }
+
+  // Points before this one change no more: predicted up to the sample the twin reached, or
+  // never predicted (no input angle).
+  std::size_t settled_end() const {
+    if (flushed) return points_front + points.size();
+    if (!started || drive.empty()) return points_front;
+    return drive[integrated].point + 1;
   }
 };
 
@@ -375,11 +388,22 @@ void MeasuredDriveTwin::push(const TwinSampleInput& sample) {
 void MeasuredDriveTwin::flush() {
   impl_->flush();
 }
-const std::vector<TwinPoint>& MeasuredDriveTwin::points() const {
-  return impl_->points;
+std::size_t MeasuredDriveTwin::take_settled_points(std::vector<TwinPoint>& out) {
+  auto& im = *impl_;
+  const std::size_t n = std::min(im.points.size(), im.settled_end() - im.points_front);
+  out.insert(out.end(), std::make_move_iterator(im.points.begin()),
+             std::make_move_iterator(im.points.begin() + static_cast<std::ptrdiff_t>(n)));
+  im.points.erase(im.points.begin(), im.points.begin() + static_cast<std::ptrdiff_t>(n));
+  im.points_front += n;
+  return n;
 }
 std::vector<TwinPoint> MeasuredDriveTwin::take_points() {
-  return std::move(impl_->points);
+  auto& im = *impl_;
+  std::vector<TwinPoint> out(std::make_move_iterator(im.points.begin()),
+                             std::make_move_iterator(im.points.end()));
+  im.points_front += im.points.size();
+  im.points.clear();
+  return out;
 }
 bool MeasuredDriveTwin::started() const {
   return impl_->started;

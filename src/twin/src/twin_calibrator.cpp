@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <stdexcept>
@@ -125,28 +127,80 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
   return saa > 0 && sbb > 0 ? sab / std::sqrt(saa * sbb) : 0.0;
 }
 
+// A replay's figures: its points are let go as they settle (a run's worth of points is
+// 100 bytes a sample), through `on_point` to whoever needs them.
 struct Replay {
   TwinSolverOptions solver;
   model::GearParams params;
-  std::vector<TwinPoint> points;
   procedures::TwinResidual residual;
+  double noise_floor_arcsec = 0;
 };
 
+using PointSink = std::function<void(const TwinPoint&)>;
+
 Replay replay(const model::GearParams& params, const procedures::GearSense& sense,
-              std::span<const storage::SyncSample> samples, analysis::SpectrumAnalyser& analyser,
-              const TwinSolverOptions& solver) {
-  Replay r{solver, params, replay_twin(params, sense, samples, solver), {}};
-  r.residual = twin_overlay_residual(twin_overlay(r.points), analyser);
-  return r;
+              std::span<const storage::SyncSample> samples, const TwinSolverOptions& solver,
+              const PointSink& on_point = {}) {
+  MeasuredDriveTwin twin(params, sense, solver);
+  TwinOverlaySum sum;
+  std::vector<TwinPoint> settled;
+  const auto drain = [&] {
+    settled.clear();
+    twin.take_settled_points(settled);
+    for (const auto& p : settled) {
+      sum.add(p);
+      if (on_point) on_point(p);
+    }
+  };
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    twin.push(twin_input(samples[i]));
+    if (i % 4096 == 4095) drain();
+  }
+  twin.flush();
+  drain();
+  return {solver, params, sum.residual(), sum.noise_floor_arcsec()};
 }
 
+// The rows of the fit (twin_calibrator.hpp), from the replay of the parameters they correct.
+struct FitRows {
+  std::vector<double> th1, th2, target, flank, twist, torque, speed;
+  void clear() { *this = FitRows{}; }
+};
+
+// Rows from a replay's points with `params` (the replayed ones).
+PointSink row_sink(FitRows& rows, const model::GearParams& params,
+                   const procedures::GearSense& sense) {
+  const double half = 0.5 * params.backlash.total_rad;
+  std::shared_ptr<model::ElasticStiffness> law;
+  if (model::is_elastic(params.stiffness.law)) {
+    law = std::make_shared<model::ElasticStiffness>(params.stiffness);
+  }
+  const double ratio = sense.ratio;
+  return [&rows, half, law, ratio](const TwinPoint& p) {
+    if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
+        !std::isfinite(p.theta2_rad) || !std::isfinite(p.twist_rad)) {
+      return;
+    }
+    rows.th1.push_back(p.theta1_rad);
+    rows.th2.push_back(p.theta2_rad);
+    rows.target.push_back(p.predicted_te_rad - p.measured_te_rad);  // δe + flank·δb/2 + δx
+    rows.flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
+    rows.twist.push_back(p.spring_twist_rad);
+    rows.torque.push_back(law ? std::copysign(law->torque_unmodulated(std::abs(p.spring_twist_rad)),
+                                              p.spring_twist_rad)
+                              : p.gear_torque_nm);
+    rows.speed.push_back(p.omega1_rad_s / ratio);
+  };
+}
+
+// Every run replayed; with `rows`, their fit rows too (run after run).
 std::vector<Replay> replay_all(const model::GearParams& params, const procedures::GearSense& sense,
                                std::span<const std::span<const storage::SyncSample>> runs,
-                               analysis::SpectrumAnalyser& analyser,
-                               const TwinSolverOptions& solver) {
+                               const TwinSolverOptions& solver, FitRows* rows = nullptr) {
   std::vector<Replay> out;
   out.reserve(runs.size());
-  for (const auto& samples : runs) out.push_back(replay(params, sense, samples, analyser, solver));
+  const PointSink sink = rows != nullptr ? row_sink(*rows, params, sense) : PointSink{};
+  for (const auto& samples : runs) out.push_back(replay(params, sense, samples, solver, sink));
   return out;
 }
 
@@ -154,16 +208,11 @@ std::vector<Replay> replay_all(const model::GearParams& params, const procedures
 double pooled_rms(const std::vector<Replay>& replays) {
   double squares = 0, n = 0;
   for (const auto& r : replays) {
-    const auto m = static_cast<double>(r.residual.residual_arcsec.size());
+    const auto m = static_cast<double>(r.residual.samples);
     squares += r.residual.rms_arcsec * r.residual.rms_arcsec * m;
     n += m;
   }
   return n > 0 ? std::sqrt(squares / n) : std::numeric_limits<double>::infinity();
-}
-
-// Signed torque of the quasi-static spring at twist x.
-double spring_torque(const model::ElasticStiffness& law, double x) {
-  return std::copysign(law.torque_unmodulated(std::abs(x)), x);
 }
 
 // The three segments' compliance columns of a catalogue curve: the twist is
@@ -214,51 +263,38 @@ struct JointFit {
 JointFit fit_jointly(const model::GearParams& nominal, const model::GearParams& start,
                      const std::string& start_fitted, const procedures::GearSense& sense,
                      std::span<const std::span<const storage::SyncSample>> runs,
-                     analysis::SpectrumAnalyser& analyser, const TwinCalibrationOptions& options,
-                     bool against_nominal) {
+                     const TwinCalibrationOptions& options, bool against_nominal) {
   JointFit out;
   model::GearParams params = start;
   TwinSolverOptions solver = options.solver;
   if (!start_fitted.empty()) out.fitted.push_back(start_fitted);
   std::vector<Replay> best;
   std::vector<Replay> current;
+  FitRows rows;  // from the replay of `params`, the current parameters
   if (against_nominal) {
-    out.before = replay_all(nominal, sense, runs, analyser, options.solver);
+    out.before =
+        replay_all(nominal, sense, runs, options.solver, start_fitted.empty() ? &rows : nullptr);
     best = out.before;
     current = best;
     if (!start_fitted.empty()) {
-      current = replay_all(params, sense, runs, analyser, solver);
+      current = replay_all(params, sense, runs, solver, &rows);
       // With passes = 0 the estimate alone is the calibration; otherwise the best replay wins.
       if (options.passes == 0 || pooled_rms(current) < pooled_rms(best)) best = current;
     }
   } else {
-    current = replay_all(params, sense, runs, analyser, solver);
+    current = replay_all(params, sense, runs, solver, &rows);
     best = current;
   }
 
   const auto candidates = candidate_orders(nominal, options.extra_orders);
   for (int pass = 0; pass < options.passes; ++pass) {
-    // Rows with everything the fit needs, run after run.
-    std::vector<double> th1, th2, target, flank, twist, torque, speed;
-    const double half = 0.5 * params.backlash.total_rad;
-    const bool elastic = model::is_elastic(params.stiffness.law);
-    std::optional<model::ElasticStiffness> law;
-    if (elastic) law.emplace(params.stiffness);
-    for (const auto& run : current) {
-      for (const auto& p : run.points) {
-        if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad) ||
-            !std::isfinite(p.theta2_rad) || !std::isfinite(p.twist_rad)) {
-          continue;
-        }
-        th1.push_back(p.theta1_rad);
-        th2.push_back(p.theta2_rad);
-        target.push_back(p.predicted_te_rad - p.measured_te_rad);  // δe + flank·δb/2 + δx
-        flank.push_back(p.twist_rad > half ? 0.5 : (p.twist_rad < -half ? -0.5 : 0.0));
-        twist.push_back(p.spring_twist_rad);
-        torque.push_back(law ? spring_torque(*law, p.spring_twist_rad) : p.gear_torque_nm);
-        speed.push_back(p.omega1_rad_s / sense.ratio);
-      }
-    }
+    const auto& th1 = rows.th1;
+    const auto& th2 = rows.th2;
+    const auto& target = rows.target;
+    const auto& flank = rows.flank;
+    const auto& twist = rows.twist;
+    const auto& torque = rows.torque;
+    const auto& speed = rows.speed;
     const std::size_t n = target.size();
     if (n == 0) break;
     // The basis the runs resolve together.
@@ -339,7 +375,8 @@ JointFit fit_jointly(const model::GearParams& nominal, const model::GearParams& 
     }
     out.orders = orders;
     out.passes = pass + 1;
-    current = replay_all(params, sense, runs, analyser, solver);
+    rows.clear();
+    current = replay_all(params, sense, runs, solver, pass + 1 < options.passes ? &rows : nullptr);
     if (pooled_rms(current) < pooled_rms(best)) best = current;
   }
 
@@ -363,26 +400,13 @@ double small_twist_stiffness_ratio(const model::GearParams& nominal,
 }
 
 double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points) {
-  double squares = 0;
-  std::size_t n = 0;
-  for (std::size_t i = 3; i < points.size(); ++i) {
-    if (points[i].index != points[i - 3].index + 3) continue;  // a gap
-    double d = 0;
-    constexpr double kWeights[4] = {-1, 3, -3, 1};
-    for (std::size_t j = 0; j < 4; ++j) {
-      const TwinPoint& p = points[i - 3 + j];
-      d += kWeights[j] * (p.measured_te_rad - p.predicted_te_rad);
-    }
-    if (!std::isfinite(d)) continue;
-    squares += d * d;
-    ++n;
-  }
-  return n == 0 ? 0.0 : std::sqrt(squares / (20.0 * static_cast<double>(n))) * kArcsecPerRad;
+  TwinOverlaySum sum;
+  for (const auto& p : points) sum.add(p);
+  return sum.noise_floor_arcsec();
 }
 
 TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
-                               analysis::SpectrumAnalyser& analyser,
                                const procedures::StaticTeResult* static_run,
                                const TwinCalibrationOptions& options) {
   model::GearParams start = nominal;
@@ -403,7 +427,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
     }
   }
   const std::array<std::span<const storage::SyncSample>, 1> runs{samples};
-  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, runs, analyser, options,
+  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, runs, options,
                              /*against_nominal=*/true);
 
   TwinCalibration cal;
@@ -414,8 +438,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
   cal.solver = best.solver;
   cal.calibrated.name = nominal.name + " (calibrated)";
   cal.after = std::move(best.residual);
-  cal.replay_after = std::move(best.points);
-  cal.noise_floor_arcsec = estimate_te_noise_floor_arcsec(cal.replay_after);
+  cal.noise_floor_arcsec = best.noise_floor_arcsec;
   cal.fitted = std::move(fit.fitted);
   cal.orders = std::move(fit.orders);
   cal.passes = fit.passes;
@@ -426,7 +449,6 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
 UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
                                         const procedures::GearSense& sense,
                                         std::span<const UnitRunSamples> runs,
-                                        analysis::SpectrumAnalyser& analyser,
                                         const UnitTwinStart& start_from,
                                         const TwinCalibrationOptions& options) {
   if (runs.empty()) throw std::invalid_argument("unit twin: no runs to calibrate from");
@@ -449,7 +471,7 @@ UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
   }
   std::vector<std::span<const storage::SyncSample>> spans;
   for (const auto& r : runs) spans.push_back(r.samples);
-  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, spans, analyser, options,
+  JointFit fit = fit_jointly(nominal, start, start_fitted, sense, spans, options,
                              /*against_nominal=*/false);
 
   UnitTwinCalibration cal;
@@ -466,11 +488,22 @@ UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
     r.run_id = runs[i].run_id;
     r.procedure = runs[i].procedure;
     r.samples = runs[i].samples.size();
-    r.noise_floor_arcsec = estimate_te_noise_floor_arcsec(fit.best[i].points);
+    r.noise_floor_arcsec = fit.best[i].noise_floor_arcsec;
     r.after = std::move(fit.best[i].residual);
     cal.runs.push_back(std::move(r));
   }
   return cal;
+}
+
+std::uint64_t write_replay_csv(const std::filesystem::path& file, const model::GearParams& gear,
+                               const procedures::GearSense& sense,
+                               std::span<const storage::SyncSample> samples,
+                               const TwinSolverOptions& solver) {
+  TwinCsvWriter csv(file);
+  replay(gear, sense, samples, solver, [&csv](const TwinPoint& p) { csv.add(p); });
+  const auto rows = csv.rows();
+  csv.commit();
+  return rows;
 }
 
 void write_calibrated_twin_config(const std::filesystem::path& file,

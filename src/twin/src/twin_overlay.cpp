@@ -5,49 +5,74 @@
 #include <string>
 
 #include "wavebench/procedures/gear_sense.hpp"
-#include "wavebench/storage/atomic_file.hpp"
 
 namespace wavebench::twin {
 
-TwinOverlay twin_overlay(std::span<const TwinPoint> points) {
-  TwinOverlay o;
-  for (const auto& p : points) {
-    if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad)) continue;
-    o.index.push_back(p.index);
-    o.t_s.push_back(p.t_s);
-    o.measured_te_rad.push_back(p.measured_te_rad);
-    o.predicted_te_rad.push_back(p.predicted_te_rad);
+void TwinOverlaySum::add(const TwinPoint& p) {
+  if (!std::isfinite(p.measured_te_rad) || !std::isfinite(p.predicted_te_rad)) {
+    // A point without both breaks the run of consecutive samples as a gap does.
+    seen_ = 0;
+    return;
   }
-  return o;
+  residual_.add(p.measured_te_rad, p.predicted_te_rad);
+  ++overlapping_;
+  for (std::size_t i = 0; i + 1 < 4; ++i) {
+    index_[i] = index_[i + 1];
+    value_[i] = value_[i + 1];
+  }
+  index_[3] = p.index;
+  value_[3] = p.measured_te_rad - p.predicted_te_rad;
+  seen_ = std::min<std::size_t>(seen_ + 1, 4);
+  if (seen_ == 4 && index_[3] == index_[0] + 3) {
+    const double d = -value_[0] + 3 * value_[1] - 3 * value_[2] + value_[3];
+    third_squares_ += d * d;
+    ++thirds_;
+  }
 }
 
-procedures::TwinResidual twin_overlay_residual(const TwinOverlay& overlay,
-                                               analysis::SpectrumAnalyser& analyser,
-                                               analysis::Window window) {
-  return procedures::twin_residual(overlay.t_s, overlay.measured_te_rad, overlay.predicted_te_rad,
-                                   window, analyser);
+double TwinOverlaySum::noise_floor_arcsec() const {
+  return thirds_ == 0 ? 0.0
+                      : std::sqrt(third_squares_ / (20.0 * static_cast<double>(thirds_))) *
+                            procedures::kArcsecPerRad;
+}
+
+procedures::TwinResidual twin_overlay_residual(std::span<const TwinPoint> points) {
+  TwinOverlaySum sum;
+  for (const auto& p : points) sum.add(p);
+  return sum.residual();
+}
+
+TwinCsvWriter::TwinCsvWriter(const std::filesystem::path& file) : file_(file) {
+  file_.append("t,index,measured_te_arcsec,predicted_te_arcsec,residual_arcsec\n");
+}
+
+void TwinCsvWriter::add(const TwinPoint& p) {
+  char row[256];
+  int n = std::snprintf(row, 64, std::abs(p.t_s) < 1e12 ? "%.6f,%llu," : "%.6e,%llu,", p.t_s,
+                        static_cast<unsigned long long>(p.index));
+  const auto field = [&](double rad, char end) {
+    const double arcsec = rad * procedures::kArcsecPerRad;
+    if (std::isfinite(arcsec)) {
+      // %.4f of a value beyond 1e12 would not fit the row: such a value is written in %e.
+      n += std::snprintf(row + n, 48, std::abs(arcsec) < 1e12 ? "%.4f" : "%.6e", arcsec);
+    }
+    row[n++] = end;
+  };
+  field(p.measured_te_rad, ',');
+  field(p.predicted_te_rad, ',');
+  field(p.measured_te_rad - p.predicted_te_rad, '\n');
+  file_.append(std::string_view(row, static_cast<std::size_t>(n)));
+  ++rows_;
+}
+
+void TwinCsvWriter::commit() {
+  file_.commit();
 }
 
 void write_twin_csv(const std::filesystem::path& file, std::span<const TwinPoint> points) {
-  std::string text = "t,index,measured_te_arcsec,predicted_te_arcsec,residual_arcsec\n";
-  text.reserve(text.size() + points.size() * 64);
-  char buf[160];
-  auto field = [&](double rad) {
-    if (!std::isfinite(rad)) return std::string();
-    std::snprintf(buf, sizeof buf, "%.4f", rad * procedures::kArcsecPerRad);
-    return std::string(buf);
-  };
-  for (const auto& p : points) {
-    std::snprintf(buf, sizeof buf, "%.6f,%llu,", p.t_s, static_cast<unsigned long long>(p.index));
-    text += buf;
-    text += field(p.measured_te_rad);
-    text += ',';
-    text += field(p.predicted_te_rad);
-    text += ',';
-    text += field(p.measured_te_rad - p.predicted_te_rad);
-    text += '\n';
-  }
-  storage::write_file_atomically(file, text);
+  TwinCsvWriter writer(file);
+  for (const auto& p : points) writer.add(p);
+  writer.commit();
 }
 
 }  // namespace wavebench::twin

@@ -151,7 +151,7 @@ std::optional<UnitTwinUpdate> update_unit_twin(
     UnitRunResidual r;
     r.run_id = just_calibrated.run_id;
     r.procedure = just_calibrated.procedure;
-    r.samples = c.replay_after.size();
+    r.samples = c.after.samples;
     r.after = c.after;
     r.noise_floor_arcsec = c.noise_floor_arcsec;
     cal.runs.push_back(std::move(r));
@@ -170,8 +170,7 @@ std::optional<UnitTwinUpdate> update_unit_twin(
       if (procedure == "torsional") start = loop_start(paths.results);
     }
     if (runs.empty()) return std::nullopt;
-    analysis::SpectrumAnalyser analyser;
-    update.calibration = calibrate_unit_twin(nominal, sense, runs, analyser, start, options);
+    update.calibration = calibrate_unit_twin(nominal, sense, runs, start, options);
   }
   const auto& cal = update.calibration;
   update.provenance = to_json(cal);

@@ -66,15 +66,16 @@ function wheelAndPanPlugin() {
 
 // series: [{label, color?, points?: true, width?, dash?}], data: [x, y1, y2, ...].
 // Options: xLabel, yLabel, logY, height, labels (() => [{x, y, text}]), onZoom(min, max)
-// (called, debounced, after the x range changes).
-export function makePlot(container, { xLabel, yLabel, series, data, logY, height, labels, onZoom }) {
+// (called, debounced, after the x range changes), yAxisSize (px for the y tick labels; 60),
+// yValues (uPlot's axis `values`: the y tick labels), xIncrs (the x tick steps allowed).
+export function makePlot(container, { xLabel, yLabel, series, data, logY, height, labels, onZoom, yAxisSize, yValues, xIncrs }) {
   const opts = {
     width: Math.max(300, container.clientWidth || 800),
     height: height || 300,
     cursor: { drag: { x: true, y: false, setScale: true } },
     scales: { x: { time: false }, y: logY ? { distr: 3 } : {} },
-    axes: [{ label: xLabel, stroke: '#333', grid: { stroke: '#e4e4e4' } },
-      { label: yLabel, stroke: '#333', grid: { stroke: '#e4e4e4' }, size: 60 }],
+    axes: [{ label: xLabel, stroke: '#333', grid: { stroke: '#e4e4e4' }, ...(xIncrs ? { incrs: xIncrs } : {}) },
+      { label: yLabel, stroke: '#333', grid: { stroke: '#e4e4e4' }, size: yAxisSize || 60, ...(yValues ? { values: yValues } : {}) }],
     series: [{ label: xLabel }, ...series.map((s, i) => ({
       label: s.label,
       stroke: s.color || palette[i % palette.length],

@@ -39,6 +39,14 @@ class SpectrumAnalyser {
   std::size_t plans_created_ = 0;
 };
 
+// The same spectrum of a long record in the record's own memory (issue #12: a whole-record FFT
+// holds one channel of doubles, not three): `signal` is windowed and transformed in place, and
+// its storage becomes the result's amplitude. Its capacity should be size() + 2 (the r2c
+// output's extra bin), else it grows once. `signal` is left empty. The result's frequency_hz
+// is left empty too (another half channel): bin k is at k · resolution_hz.
+AmplitudeSpectrum amplitude_spectrum_in_place(std::vector<double>&& signal, double sample_rate_hz,
+                                              Window window);
+
 // Convenience with a plan made for this call only.
 AmplitudeSpectrum amplitude_spectrum(std::span<const double> signal, double sample_rate_hz,
                                      Window window);

@@ -11,6 +11,8 @@ namespace wavebench::analysis {
 // Periodic (DFT-even) coefficients: the window's period is n, so the spectrum of a sine on a
 // bin has the textbook main-lobe shape.
 std::vector<double> window_coefficients(Window window, std::size_t n);
+// Coefficient i of the n above, without the table.
+double window_coefficient(Window window, std::size_t i, std::size_t n);
 
 // Sum of the coefficients divided by n: the factor a sine's line is scaled by.
 double coherent_gain(Window window);

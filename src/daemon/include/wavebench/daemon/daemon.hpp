@@ -42,10 +42,10 @@ struct DaemonSetup {
   std::size_t live_capacity = 8192;
   std::filesystem::path console_root;  // the console's files; empty: no console
   // `--results FILE`: with a shared store, every finished run also goes there (the outbox);
-  // sqlite or none: the run folders and index.sqlite only.
+  // sqlite or none: to the bench's own summaries in index.sqlite.
   fleet::ResultsConfig results;
-  // Makes the shared store's connection (on the outbox's thread); empty: PostgreSQL from
-  // `results`. Tests put a stand-in here.
+  // Makes the store's connection (on the outbox's thread); empty: PostgreSQL from `results`,
+  // or the bench's own SQLite store. Tests put a stand-in here.
   fleet::StoreFactory results_store;
 };
 
@@ -69,8 +69,10 @@ class Daemon {
   void emergency_stop(const std::string& reason) noexcept;
 
   storage::RunStore& store() { return store_; }
-  // The shared results store's outbox; null without one.
+  // The results store's outbox: to the shared store, else to the bench's own.
   fleet::Outbox* outbox() { return outbox_.get(); }
+  // GET /api/status's `results_store`: kind, pending, last error, when the next attempt is.
+  nlohmann::json results_status_json() const;
   BenchThread& bench_thread() { return bench_thread_; }
   const DaemonApi& api() const { return api_; }
 

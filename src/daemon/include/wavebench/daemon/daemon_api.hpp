@@ -2,7 +2,8 @@
 // The daemon's HTTP + JSON API as a function from request to response, independent of the
 // transport (http_server.hpp carries it over Boost.Beast).
 //
-//   GET  /api/status                         state, bench, current run, fault, acquisition
+//   GET  /api/status                         state, bench, current run, fault, acquisition,
+//                                            results store (its outbox)
 //   POST /api/runs      {procedure, options, spec, unit_serial, operator}  start  (change)
 //   POST /api/abort                           trip the bench: "operator abort" (change)
 //   POST /api/stop                            safe state: "operator stop"      (change)
@@ -25,8 +26,8 @@
 //   GET  /api/runs/{id}/twin?from_s=&to_s=&columns=              the twin's curves (run_trace.hpp)
 //   GET  /api/live?since=&limit=              latest samples
 //   GET  /api/bench/check                     commissioning check, no motion (409 during a run)
-//   GET  /api/fleet/runs|trend|spc?...        the shared results store (fleet_api.hpp); 404
-//                                             without one
+//   GET  /api/fleet/runs|trend|spc?...        the results store (fleet_api.hpp): the shared
+//                                             one, else this bench's own
 //   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
 //
 // A change needs `Authorization: Bearer <token>` (the CLI) or, from a browser, a live session
@@ -109,9 +110,13 @@ class DaemonApi {
   // error answer.
   ApiResponse handle(const ApiRequest& request) const noexcept;
   SessionTable& sessions() const { return *sessions_; }
-  // GET /api/fleet/...; set before serving (Daemon does, with a shared results store).
+  // GET /api/fleet/...; set before serving (Daemon does: the shared store, else its own).
   void set_fleet_queries(std::function<ApiResponse(const HttpTarget&)> queries) {
     fleet_ = std::move(queries);
+  }
+  // `results_store` of GET /api/status (the outbox's state); set before serving.
+  void set_results_status(std::function<nlohmann::json()> results_status) {
+    results_status_ = std::move(results_status);
   }
 
  private:
@@ -146,6 +151,7 @@ class DaemonApi {
   std::shared_ptr<SessionTable> sessions_;
   std::shared_ptr<LiveStreamClients> live_clients_;
   std::function<ApiResponse(const HttpTarget&)> fleet_;
+  std::function<nlohmann::json()> results_status_;
 };
 
 // `detail` goes through printable_text(): it may echo what the request sent.

@@ -15,6 +15,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 
@@ -34,13 +35,19 @@ struct OutboxOptions {
   std::chrono::milliseconds retry_max{60000};
   // Each failure and recovery, for the daemon's log (on the outbox's thread).
   std::function<void(const std::string&)> on_event;
+  // The index's table of the runs sent, one per kind of store: a bench switched from its own
+  // store to a shared one sends the shared one every run.
+  std::string ledger = "fleet_published";
 };
 
 struct OutboxCounts {
   std::size_t pending = 0;
-  std::size_t sent = 0;      // by this outbox (inserted or found already there)
-  std::size_t failures = 0;  // attempts that could not reach or write the store
-  std::string last_error;
+  std::size_t sent = 0;           // by this outbox (inserted or found already there)
+  std::size_t failures = 0;       // attempts that could not reach or write the store
+  std::string last_error;         // of the newest failure; kept after a recovery
+  std::string last_published_at;  // ISO 8601 UTC of the newest run sent; empty: none yet
+  // When the next attempt after a failure is due; none while not waiting on a retry.
+  std::optional<std::chrono::steady_clock::time_point> next_attempt;
 };
 
 class Outbox {

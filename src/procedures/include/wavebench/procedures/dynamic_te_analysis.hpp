@@ -1,9 +1,10 @@
 #pragma once
 // Dynamic TE (bench.md §4): constant input speed, at least one whole output revolution sampled
-// on SYNC. TE against time and output angle; mean, peak-to-peak, RMS; the spectrum in Hz (the
-// record resampled on its real timestamps) and in orders of the output and of the wave
-// generator (resampled on the measured output angle); peaks named; the twin's components above
-// Nyquist listed as aliased with the frequency they fold to.
+// on SYNC. TE against time and output angle; mean, peak-to-peak, RMS; the order spectrum of
+// the whole revolutions (the record resampled on the measured output angle) and its average
+// over single revolutions (Welch); peaks named; the twin's components above Nyquist listed as
+// aliased with the frequency they fold to. A record is reduced as it is acquired
+// (dynamic_te_record.hpp): its memory is one double per sample, for the whole-record FFT.
 
 #include <nlohmann/json.hpp>
 #include <span>
@@ -40,6 +41,9 @@ struct DynamicTeOptions {
   double input_resolution_rad = 0;   // θ_in
   double output_resolution_rad = 0;  // θ_out
   int monte_carlo_draws = 20;        // for p2p and RMS (each draw perturbs every sample)
+  // The order spectra keep their bins up to this output order (0: all); peaks are searched
+  // over all of them either way.
+  double max_order_kept = 0;
 };
 
 struct NamedPeak {
@@ -59,9 +63,13 @@ struct AliasedComponent {
 };
 
 struct DynamicTeResult {
+  // The trace: every kept sample of a short record, or the smallest and the largest TE of
+  // each block of `trace_stride` samples (in time order) of a long one.
   std::vector<double> time_s;            // from the first sample's timestamp
   std::vector<double> output_angle_rad;  // θ2, from its first value
   std::vector<double> te_arcsec;
+  std::size_t trace_stride = 1;
+  std::size_t samples = 0;  // kept samples the figures are over
   double mean_arcsec = 0;
   double p2p_arcsec = 0;
   double rms_arcsec = 0;      // about the mean
@@ -69,10 +77,16 @@ struct DynamicTeResult {
   double sample_rate_hz = 0;  // mean, from the timestamps
   double nyquist_hz = 0;
   double output_revolutions = 0;
-  analysis::AmplitudeSpectrum spectrum_hz;  // amplitude in arcsec
-  std::vector<double> order_output;         // order-spectrum axis, output orders
+  std::vector<double> order_output;  // order-spectrum axis, output orders
   std::vector<double> order_amplitude_arcsec;
-  double order_resolution = 0;  // output orders per bin
+  double order_resolution = 0;                  // output orders per bin
+  std::size_t order_points_per_revolution = 0;  // of the resampled record
+  std::size_t order_revolutions = 0;            // whole revolutions the order spectrum is over
+  // Welch: the amplitude spectrum of each whole output revolution on its own (Hann), power
+  // averaged; bins at whole output orders. Empty with fewer than two whole revolutions.
+  std::vector<double> averaged_order_output;
+  std::vector<double> averaged_amplitude_arcsec;
+  std::size_t averaged_revolutions = 0;
   std::vector<NamedPeak> peaks;
   std::vector<AliasedComponent> aliased;
   // mean, p2p and RMS with their budgets (arcsec). Each sample carries the encoders'
@@ -91,6 +105,29 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
                                    std::span<const PredictedComponent> predicted,
                                    const DynamicTeOptions& options,
                                    analysis::SpectrumAnalyser& analyser);
+
+// What a record's samples leave behind when it is reduced as it is acquired
+// (dynamic_te_record.hpp).
+struct DynamicRecordFigures {
+  std::size_t samples = 0;
+  double duration_s = 0;        // first to last sample
+  double output_angle_rad = 0;  // turned, > 0
+  double input_angle_rad = 0;   // turned, > 0
+  double mean_arcsec = 0, p2p_arcsec = 0, rms_arcsec = 0;
+  double second_difference_noise_arcsec = 0;  // sample_noise_from_second_differences
+};
+
+// The analysis of a reduced record: `grid` is its TE on `points_per_revolution` points per
+// output revolution from the first sample, over whole revolutions (consumed: the order
+// spectrum is computed in its memory). Throws std::invalid_argument when the record turned
+// less than one output revolution. The trace is left empty.
+DynamicTeResult analyse_dynamic_record(const DynamicRecordFigures& figures,
+                                       std::vector<double>&& grid,
+                                       std::size_t points_per_revolution, const GearSense& sense,
+                                       const GearTeeth& teeth,
+                                       std::span<const PredictedComponent> predicted,
+                                       const DynamicTeOptions& options,
+                                       analysis::SpectrumAnalyser& analyser);
 
 // Spectrum of a record with irregular timestamps: linear resampling onto a uniform grid at
 // the mean rate over the same span, then the amplitude spectrum.

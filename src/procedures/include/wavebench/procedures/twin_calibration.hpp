@@ -12,18 +12,30 @@
 
 namespace wavebench::procedures {
 
+// Measured − predicted TE over a record: figures only, so that a record of hours costs what
+// one sample does (its samples are in twin.csv).
 struct TwinResidual {
-  std::vector<double> residual_arcsec;  // measured − predicted, per sample
   double mean_arcsec = 0;
   double rms_arcsec = 0;  // of the residual as it is (an offset is a residual too)
   double p2p_arcsec = 0;
-  analysis::AmplitudeSpectrum spectrum_hz;  // on the real timestamps, amplitude in arcsec
+  std::size_t samples = 0;
+};
+
+// The residual one pair at a time.
+class TwinResidualSum {
+ public:
+  void add(double measured_te_rad, double predicted_te_rad);
+  // Throws std::invalid_argument when fewer than 8 pairs were added.
+  TwinResidual result() const;
+
+ private:
+  double sum_ = 0, squares_ = 0, lo_ = 0, hi_ = 0;
+  std::size_t n_ = 0;
 };
 
 // Throws std::invalid_argument when the lengths differ or there are fewer than 8 samples.
-TwinResidual twin_residual(std::span<const double> time_s, std::span<const double> measured_te_rad,
-                           std::span<const double> predicted_te_rad, analysis::Window window,
-                           analysis::SpectrumAnalyser& analyser);
+TwinResidual twin_residual(std::span<const double> measured_te_rad,
+                           std::span<const double> predicted_te_rad);
 
 // One term of the ordered harmonic basis: sin(a·θ1 + b·θ2 + φ), θ2 in the model's convention.
 struct HarmonicOrder {

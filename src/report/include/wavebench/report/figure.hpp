@@ -2,6 +2,7 @@
 // A small plotting layer: a figure is a grid of axes; axes hold line and scatter series and
 // text annotations in data coordinates. write_png() draws it with cairo.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -12,6 +13,10 @@ namespace wavebench::report {
 struct Color {
   double r = 0, g = 0, b = 0;
 };
+
+// Columns of a min/max envelope of a long record (analysis::min_max_columns): about one per
+// pixel column of a plot on a 1400 px wide figure, so the envelope draws what every sample would.
+inline constexpr std::size_t kEnvelopeColumns = 1000;
 
 // A palette that stays distinguishable in print.
 Color palette(int index);

@@ -4,6 +4,8 @@
 // spectrum with named peaks; the torque–twist (lost-motion, hysteresis) curve with the fitted
 // three-segment stiffness over it; the twin against the measurement and the residual.
 
+#include <cstdint>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -42,16 +44,25 @@ struct TorqueTwistCurve {
 std::optional<TorqueTwistCurve> torque_twist_from_results(const nlohmann::json& fit);
 std::optional<TorqueTwistCurve> torque_twist_from_samples(
     const std::vector<storage::SyncSample>& samples, const procedures::GearSense& sense);
+// The same from a sample log's records [0, records), read page by page: every point while
+// there are at most kTorqueTwistPoints, else the first point of each occupied cell of a grid
+// over the curve's extent per direction of travel (a scatter shows no more), so the memory
+// is bounded whatever the run's length.
+inline constexpr std::size_t kTorqueTwistPoints = 20000;
+std::optional<TorqueTwistCurve> torque_twist_from_log(const std::filesystem::path& log,
+                                                      std::uint64_t records,
+                                                      const procedures::GearSense& sense);
 
 // `passes`: results.json "static" list. One row per load, forward and reverse in each.
 std::optional<Figure> static_te_figure(const nlohmann::json& passes);
-std::optional<Figure> dynamic_te_figure(const DynamicTrace& trace);
-// Spectrum of the trace (when present) in Hz and in output orders, the analysis' named peaks
-// marked, predicted components above Nyquist marked "aliased" where they fold to. Without a
-// trace, the named peaks alone as stems.
-std::optional<Figure> dynamic_spectrum_figure(const std::optional<DynamicTrace>& trace,
-                                              const nlohmann::json& dynamic, double ratio,
-                                              analysis::SpectrumAnalyser& analyser);
+struct DynamicPlotData;  // dynamic_plot_data.hpp
+// TE against output angle and against time, as the envelopes hold them.
+std::optional<Figure> dynamic_te_figure(const DynamicPlotData& data);
+// The spectrum of `data` (when given and it has one) in Hz and in output orders, the analysis'
+// named peaks marked, predicted components above Nyquist marked "aliased" where they fold to.
+// Without a spectrum, the named peaks alone as stems.
+std::optional<Figure> dynamic_spectrum_figure(const DynamicPlotData* data,
+                                              const nlohmann::json& dynamic, double ratio);
 // Torque against twist, with the fitted curve of `fit` (results.json lost-motion fit:
 // stiffness k1..k3, t1, t2) drawn over it per direction of travel, each branch's offset from
 // its points.

@@ -79,8 +79,11 @@ class MeasuredDriveTwin {
   // Integrates to the last sample.
   void flush();
 
-  // One point per pushed sample, in order; predictions fill in as the twin advances.
-  const std::vector<TwinPoint>& points() const;
+  // One point per pushed sample, in order; predictions fill in as the twin advances. The
+  // points that change no more are appended to `out` and let go (a live twin of hours keeps
+  // only those in flight); returns how many.
+  std::size_t take_settled_points(std::vector<TwinPoint>& out);
+  // Every point not taken yet, settled or not (after flush(): all settled).
   std::vector<TwinPoint> take_points();
   bool started() const;
   // Bench time [s] the twin has reached (NaN before the first prediction).

@@ -34,6 +34,11 @@
 
 namespace wavebench::twin {
 
+// The samples a run's own calibration fits at most (the first ones: 2 min at 1 kHz, two output
+// revolutions at 100 rpm and N = 100). Its samples and rows are held in memory (~300 bytes a
+// sample), so this keeps a run of hours in the memory of a run of minutes (issue #12).
+inline constexpr std::size_t kMaxCalibrationSamples = 120'000;
+
 struct TwinCalibrationOptions {
   TwinSolverOptions solver;
   int passes = 2;
@@ -59,8 +64,7 @@ struct TwinCalibration {
   model::GearParams calibrated;
   procedures::TwinResidual before;  // nominal twin replayed over the run
   procedures::TwinResidual after;   // calibrated twin replayed over the same samples
-  std::vector<TwinPoint> replay_after;
-  double stiffness_factor = 1;  // calibrated / nominal stiffness
+  double stiffness_factor = 1;      // calibrated / nominal stiffness
   // The solver options of the calibrated replay, with the fitted input latch delay (a property
   // of the bench's sampling, not of the gear: it is not in the config file).
   TwinSolverOptions solver;
@@ -83,10 +87,16 @@ double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points);
 double small_twist_stiffness_ratio(const model::GearParams& nominal,
                                    const model::GearParams& calibrated);
 
+// twin.csv of `gear` replayed over `samples` (twin_overlay.hpp), e.g. a calibration's
+// (twin-calibrated.csv), written as the replay goes. Returns the rows written.
+std::uint64_t write_replay_csv(const std::filesystem::path& file, const model::GearParams& gear,
+                               const procedures::GearSense& sense,
+                               std::span<const storage::SyncSample> samples,
+                               const TwinSolverOptions& solver);
+
 // Throws std::invalid_argument when fewer samples than unknowns carry a measured TE.
 TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
-                               analysis::SpectrumAnalyser& analyser,
                                const procedures::StaticTeResult* static_run = nullptr,
                                const TwinCalibrationOptions& options = {});
 
@@ -128,7 +138,6 @@ struct UnitTwinCalibration {
 UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
                                         const procedures::GearSense& sense,
                                         std::span<const UnitRunSamples> runs,
-                                        analysis::SpectrumAnalyser& analyser,
                                         const UnitTwinStart& start = {},
                                         const TwinCalibrationOptions& options = {});
 

@@ -171,7 +171,6 @@ class Cia402ServoDrive final : public CanopenNode {
 
   bool following_error_ = false;
   double following_error_time_ = 0;
-  bool enabled_last_ = false;
 };
 
 }  // namespace wavebench::simdevices

@@ -1,0 +1,98 @@
+#include "utc_time_text.hpp"
+
+#include <cctype>
+#include <cstdio>
+#include <ctime>
+#include <stdexcept>
+
+namespace wavebench::fleet {
+
+namespace {
+
+// Reads `n` digits at `at`; false when they are not there.
+bool digits(const std::string& s, std::size_t& at, std::size_t n, int& value) {
+  if (at + n > s.size()) return false;
+  value = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const char c = s[at + i];
+    if (!std::isdigit(static_cast<unsigned char>(c))) return false;
+    value = value * 10 + (c - '0');
+  }
+  at += n;
+  return true;
+}
+
+bool take(const std::string& s, std::size_t& at, char c) {
+  if (at < s.size() && s[at] == c) {
+    ++at;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+std::string canonical_utc(const std::string& text, const std::string& key) {
+  const auto refuse = [&] {
+    return std::invalid_argument(key + ": got '" + text +
+                                 "', expected an ISO 8601 date or time (2026-11-24, "
+                                 "2026-11-24T10:15:00Z)");
+  };
+  std::size_t at = 0;
+  int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
+  long micros = 0;
+  if (!digits(text, at, 4, year) || !take(text, at, '-') || !digits(text, at, 2, month) ||
+      !take(text, at, '-') || !digits(text, at, 2, day)) {
+    throw refuse();
+  }
+  if (take(text, at, 'T') || take(text, at, ' ')) {
+    if (!digits(text, at, 2, hour) || !take(text, at, ':') || !digits(text, at, 2, minute)) {
+      throw refuse();
+    }
+    if (take(text, at, ':')) {
+      if (!digits(text, at, 2, second)) throw refuse();
+      if (take(text, at, '.')) {
+        long scale = 100000;
+        const std::size_t first = at;
+        while (at < text.size() && std::isdigit(static_cast<unsigned char>(text[at]))) {
+          micros += (text[at] - '0') * scale;  // beyond microseconds: truncated, as the index
+          scale /= 10;
+          ++at;
+        }
+        if (at == first) throw refuse();
+      }
+    }
+  }
+  int offset_minutes = 0;
+  if (at < text.size() && (text[at] == '+' || text[at] == '-')) {
+    const int sign = text[at++] == '+' ? 1 : -1;
+    int oh = 0, om = 0;
+    if (!digits(text, at, 2, oh)) throw refuse();
+    if (take(text, at, ':') || (at < text.size() && text[at] != 'Z')) {
+      if (!digits(text, at, 2, om)) throw refuse();
+    }
+    offset_minutes = sign * (oh * 60 + om);
+  } else {
+    take(text, at, 'Z');
+  }
+  if (at != text.size() || month < 1 || month > 12 || day < 1 || day > 31 || hour > 23 ||
+      minute > 59 || second > 60) {
+    throw refuse();
+  }
+  std::tm tm{};
+  tm.tm_year = year - 1900;
+  tm.tm_mon = month - 1;
+  tm.tm_mday = day;
+  tm.tm_hour = hour;
+  tm.tm_min = minute;
+  tm.tm_sec = second;
+  const std::time_t t = ::timegm(&tm) - static_cast<std::time_t>(offset_minutes) * 60;
+  std::tm utc{};
+  gmtime_r(&t, &utc);
+  char buf[40];
+  const auto n = std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &utc);
+  std::snprintf(buf + n, sizeof buf - n, ".%06ldZ", micros);
+  return buf;
+}
+
+}  // namespace wavebench::fleet
