@@ -3,11 +3,11 @@
 #include <sqlite3.h>
 
 #include <array>
-#include <charconv>
 #include <cmath>
 #include <stdexcept>
 
 #include "figure_query_rules.hpp"
+#include "fleet_sql.hpp"
 #include "sqlite_statement.hpp"
 #include "utc_time_text.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
@@ -118,48 +118,10 @@ void migrate(sqlite3* db) {
   });
 }
 
-std::optional<std::string> number_text(std::optional<double> value) {
-  if (!value || !std::isfinite(*value)) return std::nullopt;
-  char buf[32];
-  const auto [end, ec] = std::to_chars(buf, buf + sizeof buf, *value);
-  return std::string(buf, end);
+// Binds a query's text parameters in order.
+void bind_all(SqliteStatement& s, const SqlParams& params) {
+  for (std::size_t i = 0; i < params.size(); ++i) s.bind(static_cast<int>(i + 1), params[i]);
 }
-
-std::optional<std::string> text_or_null(const std::string& text) {
-  if (text.empty()) return std::nullopt;
-  return text;
-}
-
-std::optional<std::string> utc_or_null(const std::optional<std::string>& text,
-                                       const std::string& key) {
-  if (!text) return std::nullopt;
-  return canonical_utc(*text, key);
-}
-
-std::string json_text(const nlohmann::json& value) {
-  return value.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-}
-
-// WHERE clauses with their text parameters numbered in order.
-class Where {
- public:
-  void add(const std::string& condition_with_question_mark,
-           const std::optional<std::string>& value) {
-    if (!value) return;
-    params.push_back(*value);
-    std::string c = condition_with_question_mark;
-    c.replace(c.find('?'), 1, "?" + std::to_string(params.size()));
-    sql += (sql.empty() ? " WHERE " : " AND ") + c;
-  }
-  void add_fixed(const std::string& condition) {
-    sql += (sql.empty() ? " WHERE " : " AND ") + condition;
-  }
-  void bind(SqliteStatement& s) const {
-    for (std::size_t i = 0; i < params.size(); ++i) s.bind(static_cast<int>(i + 1), params[i]);
-  }
-  std::string sql;
-  std::vector<std::optional<std::string>> params;
-};
 
 }  // namespace
 
@@ -204,10 +166,6 @@ int SqliteResultsStore::schema_version() {
 }
 
 bool SqliteResultsStore::publish(const RunSummary& run) {
-  std::string columns =
-      "bench, run_id, station, operator, unit_serial, gear_model, spec, spec_version, procedure, "
-      "status, reason, verdict, pass, started_at, finished_at, software_version, config_hash, "
-      "samples_ref, limits, results";
   std::vector<std::optional<std::string>> texts = {
       run.bench,       run.run_id,     run.station, text_or_null(run.operator_name),
       run.unit_serial, run.gear_model, run.spec,    run.spec_version,
@@ -216,11 +174,10 @@ bool SqliteResultsStore::publish(const RunSummary& run) {
   for (std::size_t i = 1; i <= texts.size() + 8 + fleet_figures().size(); ++i) {
     values += (i > 1 ? ", ?" : "?") + std::to_string(i);
   }
-  for (const auto& figure : fleet_figures()) columns += std::string(", ") + figure.column;
   bool inserted = false;
   transaction(db_, [&] {
-    SqliteStatement s(db_,
-                      "INSERT OR IGNORE INTO fleet_runs (" + columns + ") VALUES (" + values + ")");
+    SqliteStatement s(db_, "INSERT OR IGNORE INTO fleet_runs (" + run_insert_columns() +
+                               ") VALUES (" + values + ")");
     int i = 1;
     for (const auto& t : texts) s.bind(i++, t);
     s.bind_bool(i++, run.pass);
@@ -265,77 +222,26 @@ bool SqliteResultsStore::publish(const RunSummary& run) {
 }
 
 std::vector<FleetRunRow> SqliteResultsStore::runs(const FleetRunQuery& q) {
-  Where where;
-  where.add("gear_model = ?", q.gear_model);
-  where.add("bench = ?", q.bench);
-  where.add("unit_serial = ?", q.unit_serial);
-  where.add("procedure = ?", q.procedure);
-  where.add("spec = ?", q.spec);
-  where.add("verdict = ?", q.verdict);
-  where.add("status = ?", q.status);
-  where.add("started_at >= ?", utc_or_null(q.from, "from"));
-  where.add("started_at <= ?", utc_or_null(q.to, "to"));
-  std::string figures;
-  for (const auto& f : fleet_figures()) figures += std::string(", ") + f.column;
-  SqliteStatement s(db_,
-                    "SELECT bench, run_id, station, COALESCE(operator, ''), unit_serial, "
-                    "gear_model, spec, spec_version, procedure, status, COALESCE(verdict, ''), "
-                    "started_at, COALESCE(finished_at, ''), software_version, samples_ref" +
-                        figures + " FROM fleet_runs" + where.sql +
-                        " ORDER BY started_at DESC, bench, run_id LIMIT " +
-                        std::to_string(q.limit > 0 ? q.limit : 50));
-  where.bind(s);
+  const auto query = runs_query(q, kSqliteSql);
+  SqliteStatement s(db_, query.sql);
+  bind_all(s, query.params);
   std::vector<FleetRunRow> rows;
   while (s.step()) {
-    FleetRunRow row;
-    int col = 0;
-    // In the SELECT's order.
-    for (auto* field :
-         {&row.bench, &row.run_id, &row.station, &row.operator_name, &row.unit_serial,
-          &row.gear_model, &row.spec, &row.spec_version, &row.procedure, &row.status, &row.verdict,
-          &row.started_at, &row.finished_at, &row.software_version, &row.samples_ref}) {
-      *field = s.text(col++);
-    }
-    for (const auto& f : fleet_figures()) {
-      if (const auto v = s.number(col)) row.figures[f.name] = *v;
-      ++col;
-    }
-    rows.push_back(std::move(row));
+    rows.push_back(
+        run_row([&](int col) { return s.text(col); }, [&](int col) { return s.number(col); }));
   }
   return rows;
 }
 
 std::vector<TrendPoint> SqliteResultsStore::trend(const FigureQuery& q) {
-  const auto& figure = checked_figure(q);
-  const bool one_pass = q.direction || q.load_nm;
-  Where where;
-  where.add("r.gear_model = ?", q.gear_model);
-  where.add_fixed("r.status = 'complete'");
-  where.add("r.bench = ?", q.bench);
-  where.add("r.started_at >= ?", utc_or_null(q.from, "from"));
-  where.add("r.started_at <= ?", utc_or_null(q.to, "to"));
-  std::string value = std::string("r.") + figure.column;
-  std::string from = "fleet_runs r";
-  if (one_pass) {
-    from += " JOIN fleet_static_passes p ON p.bench = r.bench AND p.run_id = r.run_id";
-    value = "p.p2p_arcmin";
-    where.add("p.direction = ?", q.direction);
-    where.add("abs(p.load_nm - CAST(? AS REAL)) < 1e-9", number_text(q.load_nm));
-  }
-  where.add_fixed(value + " IS NOT NULL");
-  // The newest N first (the index on gear_model, started_at), then oldest first for the answer.
-  SqliteStatement s(db_,
-                    "SELECT bench, run_id, unit_serial, started_at, value FROM (SELECT r.bench, "
-                    "r.run_id, r.unit_serial, r.started_at, " +
-                        value + " AS value FROM " + from + where.sql +
-                        " ORDER BY r.started_at DESC, r.bench DESC, r.run_id DESC" +
-                        (q.last > 0 ? " LIMIT " + std::to_string(q.last) : std::string()) +
-                        ") newest ORDER BY started_at, bench, run_id");
-  where.bind(s);
+  const auto query = trend_query(q, checked_figure(q), kSqliteSql);
+  SqliteStatement s(db_, query.sql);
+  bind_all(s, query.params);
   std::vector<TrendPoint> points;
   while (s.step()) {
-    points.push_back({static_cast<int>(points.size()) + 1, s.text(3), s.text(0), s.text(1),
-                      s.text(2), *s.number(4)});
+    points.push_back(trend_point(
+        static_cast<int>(points.size()), [&](int col) { return s.text(col); },
+        [&](int col) { return s.number(col); }));
   }
   return points;
 }
@@ -348,17 +254,17 @@ SpcAnswer SqliteResultsStore::spc(const FigureQuery& q, const SpecLimits& limits
     // As PostgreSQL's `limits ? key`: the key present, whatever its value; a value that is no
     // number gives no limit.
     const std::string path = std::string("$.\"") + figure.limit_key + "\"";
-    Where where;
-    where.add("gear_model = ?", q.gear_model);
+    SqlWhere where(kSqliteSql);
+    where.add("gear_model = @", q.gear_model);
     where.add_fixed("status = 'complete'");
-    where.add("bench = ?", q.bench);
-    where.add("json_type(limits, ?) IS NOT NULL", path);
-    const std::string path_param = "?" + std::to_string(where.params.size());
+    where.add("bench = @", q.bench);
+    where.add("json_type(limits, @) IS NOT NULL", path);
+    const std::string path_param = where.last_placeholder();
     SqliteStatement s(db_, "SELECT spec, spec_version, CASE WHEN json_type(limits, " + path_param +
                                ") IN ('integer', 'real') THEN json_extract(limits, " + path_param +
-                               ") END FROM fleet_runs" + where.sql +
+                               ") END FROM fleet_runs" + where.sql() +
                                " ORDER BY started_at DESC LIMIT 1");
-    where.bind(s);
+    bind_all(s, where.params());
     if (s.step()) newest = NewestRunLimit{s.text(0), s.text(1), s.number(2)};
   }
   return spc_answer(std::move(points), figure, limits, newest);

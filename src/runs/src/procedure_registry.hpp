@@ -1,7 +1,8 @@
 #pragma once
 // Every procedure a run request may name, in one table: its name, what the console shows of it
 // and how its options become a procedure. Plans and runs go through the procedure itself
-// (AnyProcedure), so a new procedure is one entry here and one alternative of the variant.
+// (AnyProcedure), so a new procedure is one entry here, one alternative of the variant and
+// its kResultsSection (where its outcome goes in results.json).
 
 #include <nlohmann/json.hpp>
 #include <span>

@@ -3,6 +3,7 @@
 #include <atomic>
 #include <optional>
 #include <stdexcept>
+#include <type_traits>
 #include <variant>
 
 #include "beside_idling_bench.hpp"
@@ -42,23 +43,26 @@ struct ProcedureResult {
   std::optional<procedures::StaticTeResult> static_result;
 };
 
+// Each procedure names its results.json section (kResultsSection); a new alternative of
+// AnyProcedure that does not fails to compile here rather than running with no results.
 ProcedureResult run_once(AnyProcedure& procedure, bench::Bench& bench,
                          const ProcedureProgress& progress) {
-  ProcedureResult r;
-  if (auto* p = std::get_if<StaticTeProcedure>(&procedure)) {
-    auto out = p->run(bench, progress);
-    r.json = out.to_json();
-    r.static_result = std::move(out.result);
-  } else if (auto* d = std::get_if<DynamicTeProcedure>(&procedure)) {
-    r.json["dynamic"] = d->run(bench, progress).to_json();
-  } else if (auto* l = std::get_if<LostMotionProcedure>(&procedure)) {
-    r.json["lost_motion_fit"] = l->run(bench, progress).to_json();
-  } else if (auto* t = std::get_if<TorsionalProcedure>(&procedure)) {
-    r.json["torsional"] = t->run(bench, progress).to_json();
-  } else if (auto* e = std::get_if<EnduranceProcedure>(&procedure)) {
-    r.json["endurance"] = e->run(bench, progress).to_json();
-  }
-  return r;
+  return std::visit(
+      [&](auto& p) {
+        using Procedure = std::decay_t<decltype(p)>;
+        ProcedureResult r;
+        auto out = p.run(bench, progress);
+        if constexpr (Procedure::kResultsSection.empty()) {
+          r.json = out.to_json();
+        } else {
+          r.json[std::string(Procedure::kResultsSection)] = out.to_json();
+        }
+        if constexpr (std::is_same_v<Procedure, StaticTeProcedure>) {
+          r.static_result = std::move(out.result);  // the twin calibration takes it
+        }
+        return r;
+      },
+      procedure);
 }
 
 // The procedure `repeats` times, generically (any alternative of AnyProcedure): each repeat's

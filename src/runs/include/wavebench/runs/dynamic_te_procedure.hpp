@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <nlohmann/json.hpp>
+#include <string_view>
 #include <vector>
 
 #include "wavebench/bench/bench.hpp"
@@ -57,6 +58,8 @@ procedures::GearTeeth gear_teeth(const model::GearParams& twin, double ratio);
 
 class DynamicTeProcedure {
  public:
+  // Where run()'s outcome goes in results.json.
+  static constexpr std::string_view kResultsSection = "dynamic";
   explicit DynamicTeProcedure(DynamicTeOptions options);
   // What run() will command on `bench` and for how long, without touching it. Throws
   // std::invalid_argument where run() would refuse the options on this bench.

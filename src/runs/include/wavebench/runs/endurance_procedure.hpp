@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "wavebench/bench/bench.hpp"
@@ -67,6 +68,8 @@ RevolutionTrend analyse_revolution(std::vector<storage::SyncSample> samples,
 
 class EnduranceProcedure {
  public:
+  // Where run()'s outcome goes in results.json.
+  static constexpr std::string_view kResultsSection = "endurance";
   static constexpr std::size_t kMaxPendingRevolutions = 2;
 
   explicit EnduranceProcedure(EnduranceOptions options);

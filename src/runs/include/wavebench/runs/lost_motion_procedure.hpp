@@ -8,6 +8,7 @@
 // the output-angle ones are the same in both directions.
 
 #include <nlohmann/json.hpp>
+#include <string_view>
 #include <vector>
 
 #include "wavebench/bench/bench.hpp"
@@ -48,6 +49,8 @@ struct LostMotionOutcome {
 
 class LostMotionProcedure {
  public:
+  // Where run()'s outcome goes in results.json.
+  static constexpr std::string_view kResultsSection = "lost_motion_fit";
   explicit LostMotionProcedure(LostMotionOptions options);
   // What run() will command on `bench` and for how long, without touching it. Throws
   // std::invalid_argument where run() would refuse the options on this bench.

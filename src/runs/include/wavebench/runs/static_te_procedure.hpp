@@ -6,6 +6,7 @@
 // position from the other side; both at every load (brake torque).
 
 #include <nlohmann/json.hpp>
+#include <string_view>
 #include <vector>
 
 #include "wavebench/bench/bench.hpp"
@@ -50,6 +51,9 @@ struct StaticTeOutcome {
 
 class StaticTeProcedure {
  public:
+  // Where run()'s outcome goes in results.json: "" for the top level (the static list,
+  // lost_motion, load_shift, settle_timeouts stand there since format 1).
+  static constexpr std::string_view kResultsSection = "";
   explicit StaticTeProcedure(StaticTeOptions options);
   // What run() will command on `bench` and for how long, without touching it. Throws
   // std::invalid_argument where run() would refuse the options on this bench.

@@ -10,6 +10,7 @@
 
 #include <nlohmann/json.hpp>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "wavebench/bench/bench.hpp"
@@ -69,6 +70,8 @@ struct TorsionalOutcome {
 
 class TorsionalProcedure {
  public:
+  // Where run()'s outcome goes in results.json.
+  static constexpr std::string_view kResultsSection = "torsional";
   explicit TorsionalProcedure(TorsionalOptions options);
   // What run() will command on `bench` and for how long, without touching it. Throws
   // std::invalid_argument where run() would refuse the options on this bench.
