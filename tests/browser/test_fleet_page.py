@@ -10,41 +10,29 @@ Screenshots go to <build>/test-output/browser/.
 
 Usage: test_fleet_page.py WAVEBENCHD WEB_ROOT OUTPUT_DIR
 """
-import os
-import shutil
 import sys
-import tempfile
 import time
 import unittest
 import urllib.parse
 
 from selenium.webdriver.common.by import By
-from selenium.webdriver.support.ui import WebDriverWait
 
-from test_run_pages import OUTPUT, STATIC_OPTIONS, WAVEBENCHD, Daemon, chromium
+from test_run_pages import OUTPUT, STATIC_OPTIONS, WAVEBENCHD, ConsolePageTest
 
 SPEC = "sim-seed004"
 MODEL = "Bench unit (seed 004)"
 
 
-class FleetPageTest(unittest.TestCase):
+class FleetPageTest(ConsolePageTest):
     @classmethod
     def setUpClass(cls):
-        cls.daemon = Daemon()
+        super().setUpClass()
         cls.runs = []
         for _ in range(3):
             run_id, status = cls.daemon.run("static", STATIC_OPTIONS, spec=SPEC)
             assert status == "complete", f"static run {run_id} ended {status}"
             cls.runs.append(run_id)
-        cls.profile = tempfile.mkdtemp(prefix="wavebench-chromium-")
-        cls.browser = chromium(cls.profile)
-        os.makedirs(OUTPUT, exist_ok=True)
-
-    @classmethod
-    def tearDownClass(cls):
-        cls.browser.quit()
-        shutil.rmtree(cls.profile, ignore_errors=True)
-        cls.daemon.stop()
+        cls.start_browser()
 
     def api_spc(self, **params):
         params = {"figure": "static_te_p2p", "model": MODEL, **params}
@@ -56,17 +44,6 @@ class FleetPageTest(unittest.TestCase):
                 return body
             time.sleep(0.2)
         self.fail(f"runs not in the store: {body}")
-
-    def open(self, path):
-        self.browser.get(self.daemon.url + path)
-        WebDriverWait(self.browser, 30).until(
-            lambda b: b.execute_script("return document.body.dataset.ready === 'true'"
-                                       " || !!document.querySelector('.message.error')"))
-        errors = self.browser.find_elements(By.CSS_SELECTOR, ".message.error")
-        self.assertEqual([e.text for e in errors if e.is_displayed()], [], path)
-
-    def shot(self, name):
-        self.browser.save_screenshot(os.path.join(OUTPUT, name + ".png"))
 
     def spc_cell(self, key):
         return self.browser.find_element(By.CSS_SELECTOR, f"#spc-table tr[data-key='{key}'] td")

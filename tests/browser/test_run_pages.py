@@ -112,24 +112,25 @@ def chromium(profile):
     return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
 
 
-class RunPagesTest(unittest.TestCase):
+class ConsolePageTest(unittest.TestCase):
+    """A page test's browser and daemon: subclasses make their runs in setUpClass (after this
+    one's) on self.daemon, then open pages and save screenshots."""
+
     @classmethod
     def setUpClass(cls):
         cls.daemon = Daemon()
-        cls.runs = []
-        for _ in range(2):
-            run_id, status = cls.daemon.run("static", STATIC_OPTIONS)
-            cls.runs.append(run_id)
-            assert status == "complete", f"static run {run_id} ended {status}"
-        cls.dynamic, status = cls.daemon.run("dynamic", DYNAMIC_OPTIONS)
-        assert status == "complete", f"dynamic run {cls.dynamic} ended {status}"
         cls.profile = tempfile.mkdtemp(prefix="wavebench-chromium-")
-        cls.browser = chromium(cls.profile)
+        cls.browser = None
         os.makedirs(OUTPUT, exist_ok=True)
 
     @classmethod
+    def start_browser(cls):
+        cls.browser = chromium(cls.profile)
+
+    @classmethod
     def tearDownClass(cls):
-        cls.browser.quit()
+        if cls.browser:
+            cls.browser.quit()
         shutil.rmtree(cls.profile, ignore_errors=True)
         cls.daemon.stop()
 
@@ -143,6 +144,20 @@ class RunPagesTest(unittest.TestCase):
 
     def shot(self, name):
         self.browser.save_screenshot(os.path.join(OUTPUT, name + ".png"))
+
+
+class RunPagesTest(ConsolePageTest):
+    @classmethod
+    def setUpClass(cls):
+        super().setUpClass()
+        cls.runs = []
+        for _ in range(2):
+            run_id, status = cls.daemon.run("static", STATIC_OPTIONS)
+            cls.runs.append(run_id)
+            assert status == "complete", f"static run {run_id} ended {status}"
+        cls.dynamic, status = cls.daemon.run("dynamic", DYNAMIC_OPTIONS)
+        assert status == "complete", f"dynamic run {cls.dynamic} ended {status}"
+        cls.start_browser()
 
     def canvases(self, figure_id):
         return self.browser.find_elements(By.CSS_SELECTOR, f"#{figure_id} canvas")

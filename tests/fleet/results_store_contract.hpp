@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "spc_hand_worked.hpp"
 #include "synthetic_runs.hpp"
 #include "wavebench/fleet/results_store.hpp"
 
@@ -241,19 +242,7 @@ TYPED_TEST_P(ResultsStoreContract, SpcEqualsTheHandWorkedExample) {
   const auto given = this->store_->spc(q, {0.0, 7.0});
   EXPECT_EQ(this->values_of(given.points), (std::vector<double>{1, 2, 3, 5, 4}));
   EXPECT_EQ(given.limits_from, "command line");
-  const auto& s = given.figures;
-  EXPECT_EQ(s.n, 5u);
-  EXPECT_DOUBLE_EQ(s.mean, 3.0);
-  EXPECT_NEAR(s.sigma, 1.581139, 1e-6);
-  EXPECT_DOUBLE_EQ(s.mr_bar, 1.25);
-  EXPECT_NEAR(s.ucl, 6.325, 1e-12);
-  EXPECT_NEAR(s.lcl, -0.325, 1e-12);
-  ASSERT_TRUE(s.cp && s.cpk && s.pp && s.ppk);
-  EXPECT_NEAR(*s.cp, 1.0528, 1e-12);
-  EXPECT_NEAR(*s.cpk, 0.9024, 1e-12);
-  EXPECT_NEAR(*s.pp, 0.737865, 1e-6);
-  EXPECT_NEAR(*s.ppk, 0.632456, 1e-6);
-  EXPECT_TRUE(s.out_of_control.empty());
+  testing::expect_hand_worked_spc(given.figures);
 
   // Without limits given: the newest run's spec limit (an upper one), Cpk on that side only.
   const auto from_spec = this->store_->spc(q, {});

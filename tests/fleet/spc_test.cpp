@@ -5,6 +5,8 @@
 
 #include <stdexcept>
 
+#include "spc_hand_worked.hpp"
+
 namespace wavebench::fleet {
 namespace {
 
@@ -13,20 +15,7 @@ namespace {
 // Limits 0..7: Cp 7/(6·1.25/1.128) = 7.896/7.5 = 1.0528, Cpk min(4, 3)/(3·1.25/1.128) = 0.9024,
 // Pp 7/(6·1.581139) = 0.737865, Ppk 3/(3·1.581139) = 0.632456.
 TEST(Spc, HandWorkedExample) {
-  const auto s = spc_figures({1, 2, 3, 5, 4}, {0.0, 7.0});
-  EXPECT_EQ(s.n, 5u);
-  EXPECT_DOUBLE_EQ(s.mean, 3.0);
-  EXPECT_NEAR(s.sigma, 1.581139, 1e-6);
-  EXPECT_DOUBLE_EQ(s.mr_bar, 1.25);
-  EXPECT_NEAR(s.sigma_within, 1.108156, 1e-6);
-  EXPECT_NEAR(s.ucl, 6.325, 1e-12);
-  EXPECT_NEAR(s.lcl, -0.325, 1e-12);
-  ASSERT_TRUE(s.cp && s.cpk && s.pp && s.ppk);
-  EXPECT_NEAR(*s.cp, 1.0528, 1e-12);
-  EXPECT_NEAR(*s.cpk, 0.9024, 1e-12);
-  EXPECT_NEAR(*s.pp, 0.737865, 1e-6);
-  EXPECT_NEAR(*s.ppk, 0.632456, 1e-6);
-  EXPECT_TRUE(s.out_of_control.empty());
+  testing::expect_hand_worked_spc(spc_figures({1, 2, 3, 5, 4}, {0.0, 7.0}));
 }
 
 TEST(Spc, OneSidedSpecGivesOnlyItsSide) {
