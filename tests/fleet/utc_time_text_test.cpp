@@ -21,9 +21,17 @@ TEST(UtcTimeText, DatesTimesAndOffsetsToOneForm) {
   EXPECT_EQ(canonical_utc("2026-11-24T22:00:00-0530", "to"), "2026-11-25T03:30:00.000000Z");
 }
 
+TEST(UtcTimeText, LeapDaysAndMonthEndsAreDates) {
+  EXPECT_EQ(canonical_utc("2028-02-29", "from"), "2028-02-29T00:00:00.000000Z");
+  EXPECT_EQ(canonical_utc("2000-02-29", "from"), "2000-02-29T00:00:00.000000Z");
+  EXPECT_EQ(canonical_utc("2026-12-31T23:59:59", "to"), "2026-12-31T23:59:59.000000Z");
+}
+
 TEST(UtcTimeText, RefusesOtherTextNamingTheKey) {
   for (const std::string bad : {"", "yesterday", "2026-13-01", "2026-11-24T25:00", "2026-11-24T",
-                                "2026-11-24T10:15:30.Z", "2026-11-24 junk", "24.11.2026"}) {
+                                "2026-11-24T10:15:30.Z", "2026-11-24 junk", "24.11.2026",
+                                // days past the month's end, not carried into the next month
+                                "2026-02-29", "2026-04-31", "2100-02-29", "0999-12-31"}) {
     try {
       canonical_utc(bad, "from");
       ADD_FAILURE() << "accepted '" << bad << "'";

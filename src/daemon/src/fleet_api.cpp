@@ -113,7 +113,14 @@ FleetQueries make_fleet_queries(fleet::ResultsConfig config, std::filesystem::pa
       if (config.shared()) {
         store = std::make_unique<fleet::PostgresResultsStore>(config);
       } else {
-        store = std::make_unique<fleet::SqliteResultsStore>(own_index);
+        // Read only: a query never takes the index's write lock (the run store's and the
+        // outbox's writes go on). Read-write only before the outbox has made the tables.
+        try {
+          store = std::make_unique<fleet::SqliteResultsStore>(
+              own_index, fleet::SqliteResultsStore::Access::kReadOnly);
+        } catch (const std::exception&) {
+          store = std::make_unique<fleet::SqliteResultsStore>(own_index);
+        }
       }
     } catch (const std::exception& e) {
       return api_error(503, "results store unreachable", e.what());

@@ -75,8 +75,13 @@ std::string canonical_utc(const std::string& text, const std::string& key) {
   } else {
     take(text, at, 'Z');
   }
-  if (at != text.size() || month < 1 || month > 12 || day < 1 || day > 31 || hour > 23 ||
-      minute > 59 || second > 60) {
+  // Days past the month's end (2026-02-31) are refused as PostgreSQL refuses them, not carried
+  // into the next month; years before 1000 would not sort as text.
+  const bool leap = (year % 4 == 0 && year % 100 != 0) || year % 400 == 0;
+  constexpr int kDays[12] = {31, 28, 31, 30, 31, 30, 31, 31, 30, 31, 30, 31};
+  if (at != text.size() || year < 1000 || month < 1 || month > 12 || day < 1 ||
+      day > kDays[month - 1] + (month == 2 && leap ? 1 : 0) || hour > 23 || minute > 59 ||
+      second > 60) {
     throw refuse();
   }
   std::tm tm{};

@@ -11,6 +11,7 @@
 #include "wavebench/analysis/spectral_peaks.hpp"
 #include "wavebench/procedures/dynamic_te_record.hpp"
 #include "wavebench/procedures/figure_propagation.hpp"
+#include "wavebench/procedures/revolution_welch.hpp"
 
 namespace wavebench::procedures {
 
@@ -139,28 +140,6 @@ void keep_orders(const std::vector<double>& amplitude, double resolution, double
   amplitude_out.assign(amplitude.begin(), amplitude.begin() + static_cast<std::ptrdiff_t>(end));
 }
 
-// Welch over whole output revolutions: each revolution's amplitude spectrum (Hann), the
-// amplitudes power-averaged.
-void add_averaged_spectrum(DynamicTeResult& r, std::span<const double> grid,
-                           std::size_t points_per_revolution, double max_order,
-                           analysis::SpectrumAnalyser& analyser) {
-  const std::size_t revolutions = grid.size() / points_per_revolution;
-  if (revolutions < 2) return;
-  std::vector<double> power;
-  analysis::AmplitudeSpectrum last;
-  for (std::size_t k = 0; k < revolutions; ++k) {
-    last = analyser.analyse(grid.subspan(k * points_per_revolution, points_per_revolution),
-                            static_cast<double>(points_per_revolution), analysis::Window::kHann);
-    power.resize(last.amplitude.size(), 0.0);
-    for (std::size_t i = 0; i < power.size(); ++i)
-      power[i] += last.amplitude[i] * last.amplitude[i];
-  }
-  for (double& p : power) p = std::sqrt(p / static_cast<double>(revolutions));
-  keep_orders(power, last.resolution_hz, max_order, r.averaged_order_output,
-              r.averaged_amplitude_arcsec);
-  r.averaged_revolutions = revolutions;
-}
-
 }  // namespace
 
 double folded_frequency(double frequency_hz, double sample_rate_hz) {
@@ -181,11 +160,11 @@ analysis::AmplitudeSpectrum spectrum_on_timestamps(std::span<const double> time_
 
 DynamicTeResult analyse_dynamic_record(const DynamicRecordFigures& figures,
                                        std::vector<double>&& grid,
-                                       std::size_t points_per_revolution, const GearSense& sense,
+                                       std::size_t points_per_revolution,
+                                       const RevolutionAverage& averaged, const GearSense& sense,
                                        const GearTeeth& teeth,
                                        std::span<const PredictedComponent> predicted,
-                                       const DynamicTeOptions& options,
-                                       analysis::SpectrumAnalyser& analyser) {
+                                       const DynamicTeOptions& options) {
   sense.validate();
   DynamicTeResult r;
   r.samples = figures.samples;
@@ -212,7 +191,14 @@ DynamicTeResult analyse_dynamic_record(const DynamicRecordFigures& figures,
   const UncertainFigure per_sample =
       sample_budget(figures.second_difference_noise_arcsec, sense, options);
   add_record_budgets(r, grid, per_sample, options.monte_carlo_draws);
-  add_averaged_spectrum(r, grid, points_per_revolution, options.max_order_kept, analyser);
+  // Welch over every whole output revolution: each one's amplitude spectrum (Hann), the
+  // amplitudes power-averaged (two revolutions at least).
+  if (averaged.revolutions >= 2) {
+    keep_orders(averaged.amplitude, averaged.resolution, options.max_order_kept,
+                r.averaged_order_output, r.averaged_amplitude_arcsec);
+    r.averaged_revolutions = averaged.revolutions;
+  }
+  r.averaged_revolutions_dropped = averaged.dropped;
 
   // Order spectrum over the whole output revolutions, so output orders fall on bins.
   const std::size_t grid_points = grid.size();
@@ -289,14 +275,15 @@ DynamicTeResult analyse_dynamic_te(std::span<const double> time_s,
   }
   DynamicTeRecordShape shape;
   shape.output_direction = theta_out_rad[n - 1] < theta_out_rad[0] ? -1.0 : 1.0;
-  shape.points_per_revolution = smooth_size_at_least(
-      static_cast<std::size_t>(std::ceil(static_cast<double>(n - 1) / turned)));
+  shape.points_per_revolution = smooth_size_at_least(std::max<std::size_t>(
+      8, static_cast<std::size_t>(std::ceil(static_cast<double>(n - 1) / turned))));
   shape.max_revolutions = static_cast<std::size_t>(std::floor(turned));
   shape.trace_stride = 1;
-  shape.trace_capacity = n;
+  shape.trace_capacity = std::max<std::size_t>(n, 4);
+  shape.welch_analyser = &analyser;
   DynamicTeRecord record(sense, shape);
   for (std::size_t i = 0; i < n; ++i) record.add_kept(time_s[i], theta_in_rad[i], theta_out_rad[i]);
-  return record.finish(teeth, predicted, options, analyser);
+  return record.finish(teeth, predicted, options);
 }
 
 nlohmann::json to_json(const DynamicTeResult& r) {

@@ -1,5 +1,6 @@
 #include "wavebench/procedures/dynamic_te_record.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -23,18 +24,23 @@ std::size_t smooth_size_at_least(std::size_t n) {
 
 DynamicTeRecord::DynamicTeRecord(const GearSense& sense, const DynamicTeRecordShape& shape,
                                  std::size_t max_grid_points)
-    : sense_(sense), shape_(shape), filter_(shape.output_direction) {
+    : sense_(sense),
+      shape_(shape),
+      filter_(shape.output_direction),
+      welch_(std::max<std::size_t>(shape.points_per_revolution, 8), shape.welch,
+             shape.welch_analyser) {
   sense_.validate();
   if (shape.output_direction != 1 && shape.output_direction != -1) {
     throw std::invalid_argument("dynamic TE record: output_direction " +
                                 std::to_string(shape.output_direction) + "; expected +1 or -1");
   }
-  if (shape.points_per_revolution < 8 || shape.max_revolutions < 1 || shape.trace_stride < 1) {
+  if (shape.points_per_revolution < 8 || shape.max_revolutions < 1 || shape.trace_stride < 1 ||
+      shape.trace_capacity < 4) {
     throw std::invalid_argument(
         "dynamic TE record: " + std::to_string(shape.points_per_revolution) +
         " grid points per revolution, " + std::to_string(shape.max_revolutions) +
-        " revolutions, trace stride " + std::to_string(shape.trace_stride) +
-        "; expected at least 8, 1 and 1");
+        " revolutions, trace stride " + std::to_string(shape.trace_stride) + ", trace capacity " +
+        std::to_string(shape.trace_capacity) + "; expected at least 8, 1, 1 and 4");
   }
   if (shape.points_per_revolution > max_grid_points / shape.max_revolutions) {
     throw std::invalid_argument(
@@ -45,6 +51,7 @@ DynamicTeRecord::DynamicTeRecord(const GearSense& sense, const DynamicTeRecordSh
   sign_ = sense_.direction_sign * shape.output_direction;
   grid_capacity_ = shape.points_per_revolution * shape.max_revolutions;
   grid_step_ = kTwoPi / static_cast<double>(shape.points_per_revolution);
+  trace_stride_ = shape.trace_stride;
   grid_.reserve(grid_capacity_ + 2);  // + 2: the in-place transform's extra bin
   trace_t_.reserve(shape.trace_capacity);
   trace_angle_.reserve(shape.trace_capacity);
@@ -106,7 +113,7 @@ void DynamicTeRecord::add_kept(double time_s, double theta_in_rad, double theta_
     if (te < block_min_.te) block_min_ = here;
     if (te > block_max_.te) block_max_ = here;
   }
-  if (++block_count_ == shape_.trace_stride) close_trace_block();
+  if (++block_count_ == trace_stride_) close_trace_block();
 
   last_t_ = t;
   last_angle_ = angle;
@@ -116,18 +123,26 @@ void DynamicTeRecord::add_kept(double time_s, double theta_in_rad, double theta_
 
 void DynamicTeRecord::extend_grid(double angle, double te) {
   if (kept_ == 1) {
-    if (grid_capacity_ > 0) grid_.push_back(te);
+    put_grid_point(te);
     return;
   }
-  while (grid_.size() < grid_capacity_) {
-    const double g = static_cast<double>(grid_.size()) * grid_step_;
+  for (;;) {
+    const double g = static_cast<double>(grid_points_) * grid_step_;
     if (g > angle) break;
     const double u = (g - last_angle_) / (angle - last_angle_);
-    grid_.push_back(last_te_ + u * (te - last_te_));
+    put_grid_point(last_te_ + u * (te - last_te_));
   }
 }
 
+void DynamicTeRecord::put_grid_point(double te) {
+  if (grid_.size() < grid_capacity_) grid_.push_back(te);  // reserved: never reallocates
+  welch_.put(te);
+  ++grid_points_;
+}
+
 void DynamicTeRecord::close_trace_block() {
+  const std::size_t adding = block_min_.t != block_max_.t ? 2 : 1;
+  if (trace_t_.size() + adding > trace_t_.capacity()) halve_trace();
   const bool min_first = block_min_.t <= block_max_.t;
   const TracePoint& a = min_first ? block_min_ : block_max_;
   const TracePoint& b = min_first ? block_max_ : block_min_;
@@ -142,10 +157,39 @@ void DynamicTeRecord::close_trace_block() {
   block_count_ = 0;
 }
 
+// A record longer than its stride was set for (a slower output, a longer wait): every two
+// blocks become one with their min and max, and the stride doubles. In place, so add() still
+// allocates nothing.
+void DynamicTeRecord::halve_trace() {
+  std::size_t out = 0, i = 0;
+  const std::size_t n = trace_t_.size();
+  // Each block left one or two points in time order; pairs of blocks are not marked, so the
+  // points are taken four at a time (two blocks of two), keeping their min and max in order.
+  while (i < n) {
+    const std::size_t end = std::min(n, i + 4);
+    std::size_t lo = i, hi = i;
+    for (std::size_t k = i; k < end; ++k) {
+      if (trace_te_[k] < trace_te_[lo]) lo = k;
+      if (trace_te_[k] > trace_te_[hi]) hi = k;
+    }
+    for (const std::size_t k : {std::min(lo, hi), std::max(lo, hi)}) {
+      trace_t_[out] = trace_t_[k];
+      trace_angle_[out] = trace_angle_[k];
+      trace_te_[out] = trace_te_[k];
+      ++out;
+      if (lo == hi) break;
+    }
+    i = end;
+  }
+  trace_t_.resize(out);
+  trace_angle_.resize(out);
+  trace_te_.resize(out);
+  trace_stride_ *= 2;
+}
+
 DynamicTeResult DynamicTeRecord::finish(const GearTeeth& teeth,
                                         std::span<const PredictedComponent> predicted,
-                                        const DynamicTeOptions& options,
-                                        analysis::SpectrumAnalyser& analyser) {
+                                        const DynamicTeOptions& options) {
   if (block_count_ > 0) close_trace_block();
   if (kept_ < 8) {
     throw std::invalid_argument("dynamic TE: the record has " + std::to_string(kept_) +
@@ -161,13 +205,14 @@ DynamicTeResult DynamicTeRecord::finish(const GearTeeth& teeth,
   figures.rms_arcsec = std::sqrt(m2_ / static_cast<double>(kept_));
   figures.second_difference_noise_arcsec =
       std::sqrt(second_ss_ / static_cast<double>(kept_ - 2) / 6.0);
+  const RevolutionAverage averaged = welch_.finish();
   DynamicTeResult r =
-      analyse_dynamic_record(figures, std::move(grid_), shape_.points_per_revolution, sense_, teeth,
-                             predicted, options, analyser);
+      analyse_dynamic_record(figures, std::move(grid_), shape_.points_per_revolution, averaged,
+                             sense_, teeth, predicted, options);
   r.time_s = std::move(trace_t_);
   r.output_angle_rad = std::move(trace_angle_);
   r.te_arcsec = std::move(trace_te_);
-  r.trace_stride = shape_.trace_stride;
+  r.trace_stride = trace_stride_;
   grid_.clear();
   return r;
 }

@@ -147,7 +147,8 @@ nlohmann::json DynamicTeOutcome::to_json() const {
                          {"revolutions", result.order_revolutions}};
   j["order_spectrum_averaged"] = {{"order_output", result.averaged_order_output},
                                   {"amplitude_arcsec", result.averaged_amplitude_arcsec},
-                                  {"revolutions", result.averaged_revolutions}};
+                                  {"revolutions", result.averaged_revolutions},
+                                  {"revolutions_dropped", result.averaged_revolutions_dropped}};
   j["trace"]["samples_per_block"] = result.trace_stride;
   return j;
 }
@@ -196,6 +197,7 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   shape.trace_stride = std::max<std::size_t>(
       1, static_cast<std::size_t>(expected_samples / static_cast<double>(kTracePoints)));
   shape.trace_capacity = 2 * (kTracePoints + 16);
+  shape.welch = procedures::RevolutionWelch::Transform::kOnWorker;  // add() is on acquisition
   procedures::DynamicTeRecord record(d.sense, shape);
   DynamicTeRecorder recorder(record);
   std::optional<ObserverRegistration> registration;
@@ -249,8 +251,7 @@ DynamicTeOutcome DynamicTeProcedure::run(bench::Bench& bench,
   analysis.input_resolution_rad = d.input_encoder_resolution_rad;
   analysis.output_resolution_rad = d.output_encoder_resolution_rad;
   analysis.max_order_kept = kMaxOrderShown * std::max(out.teeth.z_flex, 1);
-  analysis::SpectrumAnalyser analyser;
-  out.result = record.finish(out.teeth, predicted, analysis, analyser);
+  out.result = record.finish(out.teeth, predicted, analysis);
   if (progress) progress("dynamic done", 1.0);
   return out;
 }

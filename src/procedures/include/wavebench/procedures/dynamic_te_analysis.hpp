@@ -87,6 +87,7 @@ struct DynamicTeResult {
   std::vector<double> averaged_order_output;
   std::vector<double> averaged_amplitude_arcsec;
   std::size_t averaged_revolutions = 0;
+  std::size_t averaged_revolutions_dropped = 0;  // whole revolutions the average could not take
   std::vector<NamedPeak> peaks;
   std::vector<AliasedComponent> aliased;
   // mean, p2p and RMS with their budgets (arcsec). Each sample carries the encoders'
@@ -117,17 +118,20 @@ struct DynamicRecordFigures {
   double second_difference_noise_arcsec = 0;  // sample_noise_from_second_differences
 };
 
+struct RevolutionAverage;
+
 // The analysis of a reduced record: `grid` is its TE on `points_per_revolution` points per
 // output revolution from the first sample, over whole revolutions (consumed: the order
-// spectrum is computed in its memory). Throws std::invalid_argument when the record turned
+// spectrum is computed in its memory); `averaged` the Welch average over all its whole
+// revolutions (revolution_welch.hpp). Throws std::invalid_argument when the record turned
 // less than one output revolution. The trace is left empty.
 DynamicTeResult analyse_dynamic_record(const DynamicRecordFigures& figures,
                                        std::vector<double>&& grid,
-                                       std::size_t points_per_revolution, const GearSense& sense,
+                                       std::size_t points_per_revolution,
+                                       const RevolutionAverage& averaged, const GearSense& sense,
                                        const GearTeeth& teeth,
                                        std::span<const PredictedComponent> predicted,
-                                       const DynamicTeOptions& options,
-                                       analysis::SpectrumAnalyser& analyser);
+                                       const DynamicTeOptions& options);
 
 // Spectrum of a record with irregular timestamps: linear resampling onto a uniform grid at
 // the mean rate over the same span, then the amplitude spectrum.
