@@ -176,6 +176,10 @@ void print_trend(fleet::ResultsStore& store, const FleetArgs& args) {
 void print_spc(fleet::ResultsStore& store, const FleetArgs& args) {
   const auto q = figure_query(args);
   fleet::SpecLimits limits{number_option("--lsl", args.lsl), number_option("--usl", args.usl)};
+  if (limits.lower && limits.upper && !(*limits.lower < *limits.upper)) {
+    throw std::invalid_argument("--lsl: got '" + args.lsl + "', expected below --usl (" +
+                                args.usl + ")");
+  }
   const auto answer = store.spc(q, limits);
   const auto& figure = fleet::find_fleet_figure(q.figure);
   if (!args.png.empty()) write_chart(args.png, figure, q.gear_model, answer.points, &answer);

@@ -1,6 +1,7 @@
 #include "wavebench/daemon/fleet_api.hpp"
 
 #include <charconv>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -28,8 +29,9 @@ std::optional<double> number(const HttpTarget& t, const std::string& key) {
   if (!value) return std::nullopt;
   double v = 0;
   const auto [end, ec] = std::from_chars(value->data(), value->data() + value->size(), v);
-  if (ec != std::errc() || end != value->data() + value->size()) {
-    throw BadQuery(key + ": got '" + *value + "', expected a number");
+  // from_chars reads "nan" and "inf" too: a limit, a load or a count is a finite number.
+  if (ec != std::errc() || end != value->data() + value->size() || !std::isfinite(v)) {
+    throw BadQuery(key + ": got '" + *value + "', expected a finite number");
   }
   return v;
 }
@@ -96,7 +98,13 @@ ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
     return {200, {{"points", points}}};
   }
   if (what == "spc") {
-    return {200, fleet::to_json(store.spc(figure_query(t), {number(t, "lsl"), number(t, "usl")}))};
+    const auto lsl = number(t, "lsl");
+    const auto usl = number(t, "usl");
+    if (lsl && usl && !(*lsl < *usl)) {
+      throw BadQuery("lsl: got '" + *text(t, "lsl") + "', expected below usl (" + *text(t, "usl") +
+                     ")");
+    }
+    return {200, fleet::to_json(store.spc(figure_query(t), {lsl, usl}))};
   }
   return api_error(404, "not found",
                    "no resource at " + t.path + "; expected runs, trend, spc or figures");
