@@ -17,6 +17,8 @@
 #include "commands.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
+#include "wavebench/fleet/run_summary.hpp"
+#include "wavebench/fleet/sqlite_results_store.hpp"
 #include "wavebench/report/run_report.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/procedure_options_file.hpp"
@@ -27,6 +29,23 @@
 
 namespace wavebench::cli {
 namespace {
+
+// The run summarised into the folder's own results store, as wavebenchd does at the end of
+// every run, so that `wavebench fleet --runs DIR` and a daemon's fleet page see runs made
+// without a daemon too. Idempotent by (bench, run id): a daemon started on the folder later
+// finds it there and adds nothing. A failure here costs the summary only, never the run.
+void summarise_into_own_store(const storage::RunStore& store, const runs::RunOutcome& outcome) {
+  try {
+    const auto record = store.find_run(outcome.run_id);
+    if (!record) return;
+    fleet::SqliteResultsStore own(store.root() / "index.sqlite");
+    own.publish(fleet::summarise_run(*record, outcome.results, {}));
+  } catch (const std::exception& e) {
+    std::cerr << "wavebench run: warning: run " << outcome.run_id
+              << " not summarised into the folder's results store (wavebenchd will on its start): "
+              << e.what() << "\n";
+  }
+}
 
 struct RunArgs {
   std::string procedure;
@@ -187,6 +206,7 @@ int run_procedure(const RunArgs& a) {
   }
   line.finish();
   bench->disconnect();
+  summarise_into_own_store(store, outcome);
 
   try {
     std::cout << report::tables_as_text(

@@ -122,6 +122,42 @@ TEST_F(OwnStoreDaemon, RunsReachTheBenchsOwnStoreAndItsQueries) {
   EXPECT_EQ(again.body["runs"].size(), 2u);
 }
 
+// `wavebench run` without a daemon summarises its run into the folder's store itself; a daemon
+// started on the folder afterwards finds it there and adds nothing.
+TEST_F(OwnStoreDaemon, ACliRunReachesTheStoreWithoutADaemonAndOnlyOnce) {
+  const auto run = wavebench::testing::run_cli(
+      "run static --bench sim --out '" + runs().string() +
+          "' --positions 4 --loads 0 --window 0.05 --spec sim-seed004 --no-report --quiet",
+      dir_ / "run.txt");
+  ASSERT_EQ(run.exit_code, 0) << run.output;
+  EXPECT_EQ(run.output.find("not summarised"), std::string::npos) << run.output;
+  const auto listed = wavebench::testing::run_cli("fleet spc --runs '" + runs().string() +
+                                                      "' --figure static_te_p2p --model '" +
+                                                      testing::kSimModel + "' --json",
+                                                  dir_ / "spc.txt");
+  ASSERT_EQ(listed.exit_code, 0) << listed.output;
+  const auto answer = nlohmann::json::parse(listed.output);
+  ASSERT_EQ(answer["points"].size(), 1u) << listed.output;
+  const std::string id = answer["points"][0]["run_id"];
+  EXPECT_DOUBLE_EQ(answer["points"][0]["value"].get<double>(), largest_p2p(id));
+
+  auto daemon = start_daemon();
+  ASSERT_GT(port_, 0) << daemon->stderr_text();
+  auto api = client();
+  nlohmann::json store;
+  ASSERT_TRUE(eventually(
+      [&] {
+        store = api.get("/api/status").body.value("results_store", nlohmann::json());
+        return store.is_object() && store["pending"] == 0;
+      },
+      std::chrono::seconds(30)))
+      << store.dump();
+  const auto again = api.get("/api/fleet/runs");
+  ASSERT_EQ(again.status, 200) << again.body.dump();
+  ASSERT_EQ(again.body["runs"].size(), 1u) << again.body.dump();
+  EXPECT_EQ(again.body["runs"][0]["run_id"], id);
+}
+
 TEST_F(OwnStoreDaemon, CliRefusesAFolderWithoutAStore) {
   std::filesystem::create_directories(runs());
   const auto none =
