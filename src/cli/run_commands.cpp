@@ -192,11 +192,20 @@ int run_procedure(const RunArgs& a) {
     return 1;
   }
 
-  storage::RunStore store(a.out, runs::software_version());
+  // After the connection (a bench that does not connect leaves no folder behind), before
+  // anything moves: a folder another process writes runs into is refused.
+  std::optional<storage::RunStore> store;
+  try {
+    store.emplace(a.out, runs::software_version());
+  } catch (const std::exception& e) {
+    bench->disconnect();
+    std::cerr << "wavebench run: --out " << a.out << ": " << e.what() << "\n";
+    return 1;
+  }
   RunProgressLine line(!a.quiet);
   runs::RunOutcome outcome;
   try {
-    outcome = runs::execute_run(*bench, store, request,
+    outcome = runs::execute_run(*bench, *store, request,
                                 [&line](const runs::RunProgress& p) { line.update(p); });
   } catch (const std::exception& e) {
     line.finish();
@@ -206,7 +215,7 @@ int run_procedure(const RunArgs& a) {
   }
   line.finish();
   bench->disconnect();
-  summarise_into_own_store(store, outcome);
+  summarise_into_own_store(*store, outcome);
 
   try {
     std::cout << report::tables_as_text(

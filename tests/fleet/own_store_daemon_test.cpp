@@ -158,6 +158,22 @@ TEST_F(OwnStoreDaemon, ACliRunReachesTheStoreWithoutADaemonAndOnlyOnce) {
   EXPECT_EQ(again.body["runs"][0]["run_id"], id);
 }
 
+// `wavebench run --out` on the folder a live daemon writes is refused naming the daemon, before
+// the bench moves; the daemon's runs are untouched.
+TEST_F(OwnStoreDaemon, ACliRunIntoALiveDaemonsFolderIsRefused) {
+  auto daemon = start_daemon();
+  ASSERT_GT(port_, 0) << daemon->stderr_text();
+  const auto run =
+      wavebench::testing::run_cli("run static --bench sim --out '" + runs().string() +
+                                      "' --positions 4 --loads 0 --window 0.05 --no-report --quiet",
+                                  dir_ / "run.txt");
+  EXPECT_EQ(run.exit_code, 1) << run.output;
+  EXPECT_NE(run.output.find("in use by process"), std::string::npos) << run.output;
+  const auto listed = client().get("/api/runs");
+  ASSERT_EQ(listed.status, 200) << listed.body.dump();
+  EXPECT_EQ(listed.body["total"], 0) << listed.body.dump();
+}
+
 TEST_F(OwnStoreDaemon, CliRefusesAFolderWithoutAStore) {
   std::filesystem::create_directories(runs());
   const auto none =

@@ -1,6 +1,8 @@
 #include "wavebench/storage/run_store.hpp"
 
 #include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <fstream>
 #include <set>
@@ -96,6 +98,52 @@ TEST(RunStore, ReopeningMarksRunningRunsIncomplete) {
   EXPECT_EQ(reopened.find_run(done)->status, RunStatus::kComplete);
   EXPECT_EQ(nlohmann::json::parse(slurp(reopened.paths(running).status))["status"], "incomplete");
   EXPECT_TRUE(reopened.recover().empty());
+}
+
+// A second process on a root another one writes: refused naming the holder, and the holder's
+// running run left running (the refusal comes before recover()). Free again once it is gone.
+TEST(RunStore, AnotherProcessWritingTheRootIsRefusedAndItsRunLeftRunning) {
+  const auto root = testing::fresh_test_dir();
+  int ready[2], release[2];
+  ASSERT_EQ(::pipe(ready), 0);
+  ASSERT_EQ(::pipe(release), 0);
+  const pid_t child = ::fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    int rc = 1;
+    try {
+      RunStore store(root, "v");
+      const auto id = store.create_run("static_te", "SN", "x");
+      const char c = 'r';
+      char go = 0;
+      if (::write(ready[1], &c, 1) == 1 && ::read(release[0], &go, 1) == 1) {
+        // The refused open did not mark this live run incomplete.
+        rc = store.find_run(id)->status == RunStatus::kRunning ? 0 : 3;
+      }
+    } catch (...) {
+    }
+    ::_exit(rc);
+  }
+  char c = 0;
+  ASSERT_EQ(::read(ready[0], &c, 1), 1);
+  try {
+    RunStore second(root, "v");
+    ADD_FAILURE() << "a second process opened the store";
+  } catch (const RunStoreInUse& e) {
+    EXPECT_NE(std::string(e.what()).find("in use by process " + std::to_string(child)),
+              std::string::npos)
+        << e.what();
+  }
+  ASSERT_EQ(::write(release[1], &c, 1), 1);
+  int status = 0;
+  ASSERT_EQ(::waitpid(child, &status, 0), child);
+  EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << "child status " << status;
+  // The holder is gone: the root opens, and recovers the run it left running.
+  RunStore after(root, "v");
+  const auto runs = after.list_runs();
+  ASSERT_EQ(runs.size(), 1U);
+  EXPECT_EQ(runs[0].status, RunStatus::kIncomplete);
+  for (int fd : {ready[0], ready[1], release[0], release[1]}) ::close(fd);
 }
 
 TEST(RunStatus, ParseNamesTheExpectedValues) {

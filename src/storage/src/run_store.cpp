@@ -1,5 +1,6 @@
 #include "wavebench/storage/run_store.hpp"
 
+#include <fcntl.h>
 #include <sqlite3.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -238,9 +239,41 @@ nlohmann::json to_json(const RunRecord& run) {
   return j;
 }
 
+namespace {
+
+// The writer's lock on `root`: the open descriptor, or -1 where the file system has no locks
+// or the folder is not writable (the index then says what is wrong). Throws RunStoreInUse when
+// another process holds it.
+int lock_writer(const std::filesystem::path& root) {
+  const auto file = root / ".writer.lock";
+  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+  if (fd < 0) return -1;
+  struct flock lock {};
+  lock.l_type = F_WRLCK;
+  lock.l_whence = SEEK_SET;
+  if (::fcntl(fd, F_SETLK, &lock) == 0) return fd;
+  const int err = errno;
+  if (err != EACCES && err != EAGAIN) {
+    ::close(fd);
+    return -1;  // no record locks here (some network file systems): as before, unguarded
+  }
+  struct flock holder {};
+  holder.l_type = F_WRLCK;
+  holder.l_whence = SEEK_SET;
+  const bool known = ::fcntl(fd, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK;
+  ::close(fd);
+  throw RunStoreInUse("run store " + root.string() + ": in use by " +
+                      (known ? "process " + std::to_string(holder.l_pid) : "another process") +
+                      " (a wavebenchd or a wavebench run writing runs there); expected a folder "
+                      "no other process writes");
+}
+
+}  // namespace
+
 RunStore::RunStore(std::filesystem::path root, std::string software_version)
     : root_(std::move(root)), software_version_(std::move(software_version)) {
   std::filesystem::create_directories(root_);
+  lock_fd_ = lock_writer(root_);
   const auto db_path = root_ / "index.sqlite";
   if (sqlite3_open_v2(db_path.c_str(), &db_,
                       SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
@@ -248,6 +281,7 @@ RunStore::RunStore(std::filesystem::path root, std::string software_version)
     std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
+    if (lock_fd_ >= 0) ::close(lock_fd_);
     throw std::runtime_error("run index: cannot open " + db_path.string() + ": " + message);
   }
   sqlite3_busy_timeout(db_, 5000);
@@ -259,6 +293,7 @@ RunStore::RunStore(std::filesystem::path root, std::string software_version)
 
 RunStore::~RunStore() {
   sqlite3_close(db_);
+  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 RunPaths RunStore::paths(const std::string& id) const {

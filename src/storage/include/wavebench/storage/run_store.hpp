@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -62,12 +63,19 @@ struct RunPaths {
   std::filesystem::path dir, config, samples, results, status;
 };
 
-// Not copyable: owns the SQLite connection. One store per process; recover() assumes no other
-// process is writing runs under the same root.
+// Another process writes runs under the root (a wavebenchd, a `wavebench run --out`).
+struct RunStoreInUse : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Not copyable: owns the SQLite connection. One writing process per root: recover() marks every
+// `running` run `incomplete`, which would end a live run of another process, so the store holds
+// a POSIX record lock on <root>/.writer.lock while it lives. The lock belongs to the process
+// (several stores of one process share it) and the kernel drops it when the process dies.
 class RunStore {
  public:
-  // Creates the root and the index if missing, then recover(). Throws std::runtime_error
-  // naming the path and SQLite's message.
+  // Creates the root and the index if missing, then recover(). Throws RunStoreInUse naming the
+  // process that holds the root, std::runtime_error naming the path and SQLite's message.
   RunStore(std::filesystem::path root, std::string software_version);
   ~RunStore();
   RunStore(const RunStore&) = delete;
@@ -102,6 +110,7 @@ class RunStore {
 
   std::filesystem::path root_;
   std::string software_version_;
+  int lock_fd_ = -1;
   sqlite3* db_ = nullptr;
   std::string last_id_;
 };
