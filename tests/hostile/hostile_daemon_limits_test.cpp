@@ -18,6 +18,7 @@
 #include "daemon_process.hpp"
 #include "test_dir.hpp"
 #include "wavebench/daemon/daemon_client.hpp"
+#include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon::testing {
 namespace {
@@ -91,11 +92,12 @@ TEST(HostileDaemonLimits, OverLimitStartsAre400AndNothingIsCreatedOrMoves) {
     refused += reply.status == 400 ? 1 : 0;
   }
 
-  // Nothing was created: no run folder beside the index and the logs, no index row.
+  // Nothing was created: no run folder beside the store's own files and the logs, no index row.
   std::vector<std::string> entries;
   for (const auto& e : fs::directory_iterator(runs)) entries.push_back(e.path().filename());
   for (const auto& name : entries) {
-    EXPECT_TRUE(name == "index.sqlite" || name.rfind("index.sqlite-", 0) == 0 || name == "logs")
+    EXPECT_TRUE(name == storage::kRunIndexFile || name.rfind("index.sqlite-", 0) == 0 ||
+                name == storage::kWriterLockFile || name == "logs")
         << "created: " << name;
   }
   const auto listed = client.get("/api/runs");

@@ -94,12 +94,13 @@ std::vector<HostileStart> hostile_starts() {
   return s;
 }
 
-// Only the index: no run folder, no temp file.
+// Only the store's own files (index, writer's lock): no run folder, no temp file.
 void expect_nothing_created(const fs::path& root, storage::RunStore& store,
                             const std::string& what) {
   for (const auto& e : fs::directory_iterator(root)) {
     const auto name = e.path().filename().string();
-    EXPECT_EQ(name.rfind("index.sqlite", 0), 0u) << what << ": left " << e.path();
+    EXPECT_TRUE(name.rfind(storage::kRunIndexFile, 0) == 0 || name == storage::kWriterLockFile)
+        << what << ": left " << e.path();
   }
   EXPECT_TRUE(store.list_runs().empty()) << what;
 }

@@ -245,7 +245,7 @@ namespace {
 // or the folder is not writable (the index then says what is wrong). Throws RunStoreInUse when
 // another process holds it.
 int lock_writer(const std::filesystem::path& root) {
-  const auto file = root / ".writer.lock";
+  const auto file = root / kWriterLockFile;
   const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
   if (fd < 0) return -1;
   struct flock lock {};

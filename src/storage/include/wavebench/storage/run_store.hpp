@@ -63,6 +63,11 @@ struct RunPaths {
   std::filesystem::path dir, config, samples, results, status;
 };
 
+// The store's own files in its root beside the run folders: the index (and SQLite's -wal and
+// -shm beside it) and the writer's lock.
+inline constexpr const char* kRunIndexFile = "index.sqlite";
+inline constexpr const char* kWriterLockFile = ".writer.lock";
+
 // Another process writes runs under the root (a wavebenchd, a `wavebench run --out`).
 struct RunStoreInUse : std::runtime_error {
   using std::runtime_error::runtime_error;
