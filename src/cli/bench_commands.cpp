@@ -1,4 +1,5 @@
 // wavebench bench check CONFIG: the commissioning check (no motion; devices left inactive).
+#include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
 #include <iostream>
@@ -28,7 +29,9 @@ int run_check(const CheckArgs& a) {
     std::cerr << "wavebench bench check: " << e.what() << "\n";
     return 2;
   }
-  // The table is the output; connect's progress lines would interleave with it.
+  // The table (or the JSON) is the output, alone on stdout: connect's warnings go to stderr,
+  // and its progress lines are not shown.
+  spdlog::set_default_logger(spdlog::stderr_color_mt("wavebench-bench-check"));
   spdlog::set_level(spdlog::level::warn);
   std::unique_ptr<bench::Bench> bench;
   try {

@@ -1,6 +1,7 @@
 // `wavebench bench check CONFIG` as a process on the in-process simulated bench: exit 0 and all
-// rows green as shipped; a wrong node id, an object missing from the EDS, a wrong identity and
-// an unreachable brake: a red row naming each and exit 1; a bad config: exit 2.
+// rows green as shipped; a wrong node id, an object missing from the EDS, a wrong identity, an
+// EDS describing another device and an unreachable brake: a red row naming each and exit 1; a bad
+// config: exit 2. A drive without the CiA-optional 0x603F and 0x1018:4 is green and runs.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,9 +23,10 @@ struct CommandResult {
   std::string output;
 };
 
-CommandResult run_wavebench(const std::string& args) {
-  const std::string command =
-      std::string(WAVEBENCH_BINARY_DIR) + "/src/cli/wavebench " + args + " 2>&1";
+// `stderr_too`: the output is stdout and stderr; otherwise stdout alone (stderr discarded).
+CommandResult run_wavebench(const std::string& args, bool stderr_too = true) {
+  const std::string command = std::string(WAVEBENCH_BINARY_DIR) + "/src/cli/wavebench " + args +
+                              (stderr_too ? " 2>&1" : " 2>/dev/null");
   CommandResult result;
   FILE* pipe = ::popen(command.c_str(), "r");
   if (!pipe) return result;
@@ -157,6 +159,68 @@ TEST_F(BenchCheckCli, BadConfigExits2NamingTheKey) {
   EXPECT_EQ(r.exit_code, 2) << r.output;
   EXPECT_NE(r.output.find("drive.eds"), std::string::npos) << r.output;
   EXPECT_NE(r.output.find("absent.eds"), std::string::npos) << r.output;
+}
+
+bool has_green_row(const std::string& output, const std::string& device, const std::string& item) {
+  std::istringstream lines(output);
+  std::string line;
+  while (std::getline(lines, line))
+    if (line.rfind("ok", 0) == 0 && line.find(device) != std::string::npos &&
+        line.find(item) != std::string::npos)
+      return true;
+  return false;
+}
+
+TEST_F(BenchCheckCli, JsonIsAloneOnStdoutWhenConnectWarns) {
+  // A bus-load warning threshold below the bench's load: connect warns, the row is red.
+  auto text = sim_;
+  replace(text, "bus_load_warning: 0.8", "bus_load_warning: 0.01");
+  const auto r = run_wavebench("bench check --json " + write("warn.yaml", text), false);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  nlohmann::json j;
+  ASSERT_NO_THROW(j = nlohmann::json::parse(r.output)) << r.output;
+  EXPECT_FALSE(j["all_green"].get<bool>());
+  const auto both = run_wavebench("bench check --json " + write("warn2.yaml", text), true);
+  EXPECT_NE(both.output.find("bus load"), std::string::npos) << both.output;
+}
+
+TEST_F(BenchCheckCli, DriveWithoutErrorCodeAndSerialNumberIsGreenAndRuns) {
+  auto text = sim_;
+  replace(text, "  simbench:",
+          "  simbench:\n    drive: {absent_objects: [\"0x603F\", \"0x1018:4\"]}\n   ");
+  const auto file = write("no603f.yaml", text);
+  const auto r = run_wavebench("bench check " + file);
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_TRUE(has_green_row(r.output, "servo drive", "0x603F:0 error code")) << r.output;
+  EXPECT_NE(r.output.find("absent (optional): a fault is reported"), std::string::npos) << r.output;
+  EXPECT_TRUE(has_green_row(r.output, "servo drive", "0x1018:4 serial number")) << r.output;
+  EXPECT_NE(r.output.find("0x1018:4 serial absent (optional)"), std::string::npos) << r.output;
+
+  const auto out = dir_ / "runs";
+  const auto run = run_wavebench("run static --bench " + file +
+                                 " --positions 4 --loads 0 --quiet --out " + out.string());
+  EXPECT_EQ(run.exit_code, 0) << run.output;
+}
+
+TEST_F(BenchCheckCli, EdsOfAnotherDeviceGivesARedIdentityRowNamingBoth) {
+  auto eds = read(fs::path(WAVEBENCH_SOURCE_DIR) / "configs/eds/servo_drive.eds");
+  replace(eds, "VendorNumber=0x00000A57", "VendorNumber=0x000000FB");
+  replace(eds, "ProductNumber=0x00000402", "ProductNumber=0x60500000");
+  const auto eds_path = write("other-vendor.eds", eds);
+  auto text = sim_;
+  replace(text, (fs::path(WAVEBENCH_SOURCE_DIR) / "configs/eds/servo_drive.eds").string(),
+          eds_path);
+  // The config expects nothing itself: only the EDS says who the device should be.
+  replace(text, "identity: {vendor_id: 0x00000A57, product_code: 0x00000402}", "identity: {}");
+  const auto r = check("other-vendor.yaml", text);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has_red_row(r.output, "servo drive", "identity")) << r.output;
+  EXPECT_NE(r.output.find("device vendor-ID 0x00000A57, the EDS VendorNumber says 0x000000FB"),
+            std::string::npos)
+      << r.output;
+  EXPECT_NE(r.output.find("device product code 0x00000402, the EDS ProductNumber says 0x60500000"),
+            std::string::npos)
+      << r.output;
 }
 
 }  // namespace

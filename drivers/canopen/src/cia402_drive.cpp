@@ -73,7 +73,8 @@ constexpr auto kDriveObjects = with_node_objects(std::to_array<UsedObject>({
     {0x1A01, 0, "TPDO2 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
     {0x1A01, 1, "TPDO2 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
     {0x1A01, 2, "TPDO2 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
-    {0x603F, 0, "error code", dt::kUnsigned16, 0, kRead},
+    {0x603F, 0, "error code", dt::kUnsigned16, 0, kRead, kNone,
+     "a fault is reported by its statusword and EMCY, without 0x603F"},
     {0x6040, 0, "controlword", dt::kUnsigned16, 0, kReadWrite, kRpdo},
     {0x6041, 0, "statusword", dt::kUnsigned16, 0, kRead, kTpdo},
     {0x6060, 0, "modes of operation", dt::kInteger8, 0, kReadWrite},
@@ -84,7 +85,8 @@ constexpr auto kDriveObjects = with_node_objects(std::to_array<UsedObject>({
     {0x6081, 0, "profile velocity", dt::kUnsigned32, 0, kReadWrite},
     {0x6083, 0, "profile acceleration", dt::kUnsigned32, 0, kReadWrite},
     {0x6084, 0, "profile deceleration", dt::kUnsigned32, 0, kReadWrite},
-    {0x60F4, 0, "following error actual value", dt::kInteger32, 0, kRead, kTpdo, true},
+    {0x60F4, 0, "following error actual value", dt::kInteger32, 0, kRead, kTpdo,
+     "no following-error channel; the following-error limit is not judged"},
     {0x60FF, 0, "target velocity", dt::kInteger32, 0, kReadWrite},
 }));
 

@@ -15,8 +15,9 @@ constexpr auto kEncoderObjects = with_node_objects(std::to_array<UsedObject>({
     {0x6004, 0, "position value", dt::kUnsigned32, 0, kRead, kTpdo},
     {0x6501, 0, "single-turn resolution", dt::kUnsigned32, 0, kRead},
     // CiA 406 v3 says UNSIGNED16; some devices use UNSIGNED32 (read_configuration takes both).
-    {0x6502, 0, "number of distinguishable revolutions", dt::kUnsigned16, dt::kUnsigned32, kRead},
-    {0x6503, 0, "alarms", dt::kUnsigned16, 0, kRead},
+    {0x6502, 0, "number of distinguishable revolutions", dt::kUnsigned16, dt::kUnsigned32, kRead,
+     kNone, "a single-turn encoder: one turn (or encoder.turns)"},
+    {0x6503, 0, "alarms", dt::kUnsigned16, 0, kRead, kNone, "the encoder's alarms are not read"},
 }));
 
 }  // namespace

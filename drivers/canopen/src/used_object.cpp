@@ -13,7 +13,7 @@ std::vector<std::string> check_against_eds(std::span<const UsedObject> used, con
   for (const auto& u : used) {
     const auto* o = eds.find(u.index, u.sub);
     if (!o) {
-      if (!u.optional) problems.push_back(describe(u) + ": not in the EDS");
+      if (!u.optional()) problems.push_back(describe(u) + ": not in the EDS");
       continue;
     }
     if (o->data_type != u.data_type && (u.alt_data_type == 0 || o->data_type != u.alt_data_type)) {

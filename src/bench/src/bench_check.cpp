@@ -129,37 +129,76 @@ class Check {
     return true;
   }
 
+  // 0x1018 against the config's `identity:` and against the EDS's [DeviceInfo]: a device that
+  // is not the one its EDS describes is red, naming both values. Sub-indices 2..4 are optional
+  // in CiA 301: an absent one is noted, not red. The revision's minor half (low 16 bits) means
+  // "same behaviour" in CiA 301, so only its major half must match the EDS.
   void identity_row(const BenchCanopenDevice& d, canopen::SdoClient& sdo) {
     struct Field {
       std::uint8_t sub;
       const char* name;
       const char* key;
       const std::optional<std::uint32_t>* expected;
+      const char* eds_key;
+      std::optional<std::uint32_t> eds;
     };
     const auto& id = d.expect->identity;
-    const Field fields[] = {{1, "vendor-ID", "vendor_id", &id.vendor_id},
-                            {2, "product code", "product_code", &id.product_code},
-                            {3, "revision", "revision", &id.revision},
-                            {4, "serial", "serial_number", &id.serial_number}};
+    const auto* eds = d.expect->eds ? &*d.expect->eds : nullptr;
+    const auto file = d.expect->eds_path.filename().string();
+    Field fields[] = {{1, "vendor-ID", "vendor_id", &id.vendor_id, "VendorNumber",
+                       eds ? eds->vendor_number() : std::nullopt},
+                      {2, "product code", "product_code", &id.product_code, "ProductNumber",
+                       eds ? eds->product_number() : std::nullopt},
+                      {3, "revision", "revision", &id.revision, "RevisionNumber",
+                       eds ? eds->revision_number() : std::nullopt},
+                      {4, "serial", "serial_number", &id.serial_number, nullptr, std::nullopt}};
     std::string seen;
     std::string wrong;
+    std::string notes;
+    auto append = [](std::string& to, const std::string& what) {
+      to += (to.empty() ? "" : "; ") + what;
+    };
     for (const auto& f : fields) {
       std::error_code ec;
       const auto v = sdo.read<std::uint32_t>(0x1018, f.sub, ec);
       if (ec) {
-        wrong += fmt::format("{}0x1018:{} {} unreadable: {}", wrong.empty() ? "" : "; ", f.sub,
-                             f.name, ec.message());
+        const bool absent = is_abort(ec, SdoAbort::no_object) ||
+                            is_abort(ec, SdoAbort::no_sub_index) ||
+                            is_abort(ec, SdoAbort::write_only);
+        if (f.sub != 1 && absent && !*f.expected) {
+          append(notes, fmt::format("0x1018:{} {} absent (optional)", f.sub, f.name));
+        } else {
+          append(wrong, fmt::format("0x1018:{} {} unreadable: {}", f.sub, f.name, ec.message()));
+        }
         continue;
       }
       seen += fmt::format("{}{} {}", seen.empty() ? "" : ", ", f.name, hex32(v));
       if (*f.expected && **f.expected != v) {
-        wrong += fmt::format("{}{} {}, expected {} ({}.identity.{})", wrong.empty() ? "" : "; ",
-                             f.name, hex32(v), hex32(**f.expected), d.config_key, f.key);
+        append(wrong, fmt::format("{} {}, expected {} ({}.identity.{})", f.name, hex32(v),
+                                  hex32(**f.expected), d.config_key, f.key));
+      }
+      if (f.eds && *f.eds != v) {
+        const bool minor_only = f.sub == 3 && (*f.eds >> 16) == (v >> 16);
+        const auto text = fmt::format("device {} {}, the EDS {} says {} ({})", f.name, hex32(v),
+                                      f.eds_key, hex32(*f.eds), file);
+        if (minor_only) {
+          append(notes, text + ": minor revision only");
+        } else {
+          append(wrong, text);
+        }
       }
     }
     const bool any_expected = id.vendor_id || id.product_code || id.revision || id.serial_number;
-    add(device_label(d), "identity", wrong.empty(),
-        wrong.empty() ? seen + (any_expected ? " (as configured)" : " (nothing expected)") : wrong);
+    const bool eds_identity = eds && (eds->vendor_number() || eds->product_number());
+    std::string detail = wrong;
+    if (wrong.empty()) {
+      detail = seen + (any_expected && eds_identity ? " (as configured and as the EDS says)"
+                       : any_expected               ? " (as configured)"
+                       : eds_identity               ? " (as the EDS says)"
+                                                    : " (nothing expected)");
+    }
+    if (!notes.empty()) detail += "; " + notes;
+    add(device_label(d), "identity", wrong.empty(), detail);
   }
 
   void object_row(const BenchCanopenDevice& d, canopen::SdoClient& sdo,
@@ -170,8 +209,8 @@ class Check {
     const auto bytes = sdo.upload(u.index, u.sub, ec);
     const auto type = canopen::data_type_name(u.data_type);
     if (is_abort(ec, SdoAbort::no_object) || is_abort(ec, SdoAbort::no_sub_index)) {
-      if (u.optional) {
-        add(label, item, true, "absent (optional: the bench goes on without it)");
+      if (u.optional()) {
+        add(label, item, true, std::string("absent (optional): ") + u.without);
       } else {
         add(label, item, false, "missing: " + ec.message());
       }

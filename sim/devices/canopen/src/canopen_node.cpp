@@ -61,15 +61,16 @@ void CanopenNode::add_communication_objects(const NodeIdentity& identity) {
                                                  DataType::kUnsigned16, Access::kReadWrite, 0);
   heartbeat.after_write = [this] { restart_heartbeat(now_); };
   od_.add_value<std::uint8_t>(0x1018, 0, "identity: highest sub-index", DataType::kUnsigned8,
-                              Access::kConst, 4);
+                              Access::kConst, identity.has_serial_number ? 4 : 3);
   od_.add_value<std::uint32_t>(0x1018, 1, "vendor-ID", DataType::kUnsigned32, Access::kReadOnly,
                                identity.vendor_id);
   od_.add_value<std::uint32_t>(0x1018, 2, "product code", DataType::kUnsigned32, Access::kReadOnly,
                                identity.product_code);
   od_.add_value<std::uint32_t>(0x1018, 3, "revision number", DataType::kUnsigned32,
                                Access::kReadOnly, identity.revision);
-  od_.add_value<std::uint32_t>(0x1018, 4, "serial number", DataType::kUnsigned32, Access::kReadOnly,
-                               identity.serial_number);
+  if (identity.has_serial_number)
+    od_.add_value<std::uint32_t>(0x1018, 4, "serial number", DataType::kUnsigned32,
+                                 Access::kReadOnly, identity.serial_number);
 }
 
 void CanopenNode::add_pdo_objects(bool transmit, int number) {

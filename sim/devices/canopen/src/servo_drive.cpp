@@ -134,7 +134,8 @@ void Cia402ServoDrive::add_profile_objects() {
   const auto& c = config_;
   using DT = DataType;
   using A = Access;
-  d.add_value<std::uint16_t>(0x603F, 0, "error code", DT::kUnsigned16, A::kReadOnly, 0, true);
+  if (c.has(0x603F))
+    d.add_value<std::uint16_t>(0x603F, 0, "error code", DT::kUnsigned16, A::kReadOnly, 0, true);
   d.add_value<std::uint16_t>(0x6040, 0, "controlword", DT::kUnsigned16, A::kReadWrite, 0, true)
       .after_write = [this] { on_controlword(); };
   d.add_value<std::uint16_t>(0x6041, 0, "statusword", DT::kUnsigned16, A::kReadOnly, 0, true);
@@ -321,7 +322,7 @@ void Cia402ServoDrive::on_controlword() {
       profile_done_ = true;
     }
     if (before == Cia402State::kFault) {
-      od().set<std::uint16_t>(0x603F, 0, 0);
+      if (config_.has(0x603F)) od().set<std::uint16_t>(0x603F, 0, 0);
       following_error_ = false;
       following_error_time_ = 0;
       send_emcy(0x0000, 0x00);  // error reset
@@ -578,7 +579,7 @@ void Cia402ServoDrive::inject_fault(std::uint16_t error_code) {
       machine_.state() == Cia402State::kFaultReactionActive) {
     return;
   }
-  od().set<std::uint16_t>(0x603F, 0, error_code);
+  if (config_.has(0x603F)) od().set<std::uint16_t>(0x603F, 0, error_code);
   machine_.fault();
   torque_ = 0;
   send_emcy(error_code, error_register_for(error_code));

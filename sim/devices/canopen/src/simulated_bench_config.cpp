@@ -1,5 +1,6 @@
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 
+#include <cctype>
 #include <cstddef>
 #include <limits>
 #include <numbers>
@@ -50,13 +51,20 @@ void read_drive_units(YamlSection& s, ServoDriveConfig& d) {
     d.absent_objects.clear();
     for (std::size_t i = 0; i < objects->size(); ++i) {
       const std::string& text = (*objects)[i];
-      if (text == "0x60F4" || text == "0x60f4") {
+      std::string upper = text;
+      for (auto& ch : upper) ch = static_cast<char>(std::toupper(static_cast<unsigned char>(ch)));
+      if (upper == "0X60F4") {
         d.absent_objects.push_back(0x60F4);
-      } else if (text == "0x6077") {
+      } else if (upper == "0X6077") {
         d.absent_objects.push_back(0x6077);
+      } else if (upper == "0X603F") {
+        d.absent_objects.push_back(0x603F);
+      } else if (upper == "0X1018:4") {
+        d.identity.has_serial_number = false;
       } else {
         s.fail("absent_objects[" + std::to_string(i) + "]", text,
-               "one of the optional objects \"0x60F4\", \"0x6077\"");
+               "one of the optional objects \"0x60F4\", \"0x6077\", \"0x603F\", "
+               "\"0x1018:4\"");
       }
     }
   }

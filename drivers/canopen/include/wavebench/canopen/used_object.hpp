@@ -1,7 +1,10 @@
 #pragma once
 // The objects a device client uses, written once next to each client (Cia402Drive,
 // Cia406Encoder, TorqueSensor::used_objects): the EDS check before connecting and the
-// commissioning check read the same list.
+// commissioning check read the same list. It is the bench's policy per device class, after the
+// profiles (CiA 301, 402, 406): an object a profile makes optional carries `without`, what the
+// bench does when the device lacks it (an absent channel, a skipped step, a message); only the
+// objects without it can make a row red.
 
 #include <array>
 #include <cstddef>
@@ -25,7 +28,9 @@ struct UsedObject {
   std::uint16_t alt_data_type = 0;  // a second accepted type (0: none), e.g. 0x6502 u16 or u32
   UsedAccess access = UsedAccess::kRead;
   UsedInPdo pdo = UsedInPdo::kNone;
-  bool optional = false;  // the client copes without it (an absent channel, a skipped write)
+  // nullptr: required. Otherwise the device may lack it and this says what the bench does then.
+  const char* without = nullptr;
+  constexpr bool optional() const noexcept { return without != nullptr; }
 };
 
 // The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
@@ -37,12 +42,17 @@ constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   namespace dt = datatype;
   return {{
       {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
-      {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
-      {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
+      {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone,
+       "not written: the device answers every SYNC as it comes"},
+      {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite, kNone,
+       "no heartbeat producer: the node is watched by node guarding (0x100C/0x100D)"},
       {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
-      {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
-      {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
-      {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
+      {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead, kNone,
+       "the product code is not compared"},
+      {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead, kNone,
+       "the revision is not compared"},
+      {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead, kNone,
+       "the device's serial number is not recorded"},
       {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
       {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
       {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},

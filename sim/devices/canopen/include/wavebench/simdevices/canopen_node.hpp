@@ -32,6 +32,7 @@ struct NodeIdentity {
   std::uint32_t product_code = 0;
   std::uint32_t revision = 0;
   std::uint32_t serial_number = 0;
+  bool has_serial_number = true;  // 0x1018:4 is optional in CiA 301 (sub0 = 3 without it)
 };
 
 // A frame leaving the node: COB-ID (11 bit) and 0..8 data bytes.

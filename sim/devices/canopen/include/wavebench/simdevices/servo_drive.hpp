@@ -79,7 +79,7 @@ struct ServoDriveConfig {
   bool following_error_is_fault = true;           // error 0x8611 when the window is exceeded
   DriveVelocityUnit velocity_unit = DriveVelocityUnit::kCounts;
   DriveFactorGroupConfig factor_group;  // with kFactorGroup
-  // Optional objects this drive model lacks (0x60F4, 0x6077): SDO access and PDO mapping
+  // Optional objects this drive model lacks (0x60F4, 0x6077, 0x603F): SDO access and PDO mapping
   // answer 06020000.
   std::vector<std::uint16_t> absent_objects;
 

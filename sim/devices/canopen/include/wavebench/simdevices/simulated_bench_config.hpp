@@ -15,7 +15,8 @@
 //                              velocity_encoder_resolution: [131072, 1],   # 0x6090
 //                              gear_ratio: [1, 1],                         # 0x6091
 //                              feed_constant: [131072, 1]},                # 0x6092
-//               absent_objects: []}             # optional objects lacking: "0x60F4", "0x6077"
+//               absent_objects: []}             # optional objects lacking: "0x60F4", "0x6077",
+//                                               # "0x603F" (error code), "0x1018:4" (serial)
 //     encoder: {node_id: 3, resolution: 1048576, revolutions: 2048, noise_arcsec: 0.5, seed: 3}
 //     torque_sensor: {node_id: 4, object: "0x6130:1", type: i32, scale: 0.001,
 //                     noise_nm: 0.02, offset_nm: 0, seed: 4}
