@@ -88,8 +88,8 @@ std::string to_utf8(std::string_view text) {
 
 std::string value_message(std::string_view source, std::string_view section, std::string_view key,
                           std::string_view value, std::string_view expected) {
-  return fmt::format("EDS {}: [{}] {} = '{}': expected {}", source, section, key, clip(value),
-                     expected);
+  return fmt::format("EDS {}: [{}] {} = '{}': expected {}", source, clip(section), clip(key),
+                     clip(value), expected);
 }
 
 std::string Warnings::add(std::string text) {
@@ -107,7 +107,7 @@ std::string Warnings::value(std::string_view section, std::string_view key, std:
 }
 
 std::string Warnings::section(std::string_view section, std::string_view what) {
-  return add(fmt::format("EDS {}: [{}]: {}", source_, section, what));
+  return add(fmt::format("EDS {}: [{}]: {}", source_, clip(section), what));
 }
 
 std::string Warnings::line(std::size_t line, std::string_view what) {
