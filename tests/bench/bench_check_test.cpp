@@ -107,8 +107,8 @@ TEST(BenchCheck, ObjectMissingFromTheEdsIsRed) {
 }
 
 TEST(BenchCheck, EdsWarningsAreAGreenRowAndAnUnreadableUsedObjectSaysWhy) {
-  // servo_drive.eds with 0x6081's AccessType misspelt (the object is left out of the EDS) and an
-  // object list naming a section the file lacks (a warning only).
+  // servo_drive.eds with 0x6081's AccessType misspelt (the object is left out of the EDS) and a
+  // sub-index section without its object (a warning only).
   std::ifstream in(std::filesystem::path(WAVEBENCH_SOURCE_DIR) / "configs/eds/servo_drive.eds");
   std::stringstream text;
   text << in.rdbuf();
@@ -116,7 +116,7 @@ TEST(BenchCheck, EdsWarningsAreAGreenRowAndAnUnreadableUsedObjectSaysWhy) {
   const auto at = eds.find("AccessType=rw", eds.find("[6081]"));
   ASSERT_NE(at, std::string::npos);
   eds.replace(at, 13, "AccessType=readwrite");
-  eds += "\n[ManufacturerObjects]\nSupportedObjects=1\n1=0x2999\n";
+  eds += "\n[2999sub1]\nParameterName=x\nDataType=0x0005\nAccessType=ro\n";
   auto config = sim_config([&](BenchConfig& b) {
     b.drive.expect.eds = std::make_shared<const canopen::Eds>(canopen::Eds::parse(eds, "w.eds"));
     b.drive.expect.eds_path = "w.eds";
@@ -135,7 +135,7 @@ TEST(BenchCheck, EdsWarningsAreAGreenRowAndAnUnreadableUsedObjectSaysWhy) {
   EXPECT_TRUE(warnings->ok) << c.table;
   EXPECT_NE(warnings->device.find("servo drive"), std::string::npos) << c.table;
   EXPECT_NE(warnings->detail.find("w.eds: 2 warnings: "), std::string::npos) << warnings->detail;
-  EXPECT_NE(warnings->detail.find("[ManufacturerObjects] 1 = '0x2999'"), std::string::npos)
+  EXPECT_NE(warnings->detail.find("[2999sub1]: a sub-index of 0x2999"), std::string::npos)
       << warnings->detail;
 }
 
