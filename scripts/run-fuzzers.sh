@@ -13,7 +13,7 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" \
   -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
   -DWAVEBENCH_WERROR=OFF >/dev/null
-targets=(fuzz_can_frames fuzz_sdo_client fuzz_twin_config fuzz_bench_config
+targets=(fuzz_can_frames fuzz_sdo_client fuzz_eds fuzz_twin_config fuzz_bench_config
   fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
@@ -23,6 +23,7 @@ for t in "${targets[@]}"; do
   mkdir -p "$corpus"
   # Config fuzzers start from the shipped configs, copied fresh (never committed as corpora).
   case "$t" in
+    fuzz_eds) cp -n "$root"/configs/eds/*.eds "$corpus/" ;;
     fuzz_twin_config) cp -n "$root"/configs/twin/*.yaml "$corpus/" ;;
     fuzz_bench_config) cp -n "$root"/configs/benches/*.yaml "$corpus/" ;;
     fuzz_simbench_config) # the example of simulated_bench_config.hpp

@@ -106,6 +106,39 @@ TEST(BenchCheck, ObjectMissingFromTheEdsIsRed) {
   EXPECT_NE(pdo->detail.find("the EDS disagrees"), std::string::npos) << pdo->detail;
 }
 
+TEST(BenchCheck, EdsWarningsAreAGreenRowAndAnUnreadableUsedObjectSaysWhy) {
+  // servo_drive.eds with 0x6081's AccessType misspelt (the object is left out of the EDS) and a
+  // sub-index section without its object (a warning only).
+  std::ifstream in(std::filesystem::path(WAVEBENCH_SOURCE_DIR) / "configs/eds/servo_drive.eds");
+  std::stringstream text;
+  text << in.rdbuf();
+  std::string eds = text.str();
+  const auto at = eds.find("AccessType=rw", eds.find("[6081]"));
+  ASSERT_NE(at, std::string::npos);
+  eds.replace(at, 13, "AccessType=readwrite");
+  eds += "\n[2999sub1]\nParameterName=x\nDataType=0x0005\nAccessType=ro\n";
+  auto config = sim_config([&](BenchConfig& b) {
+    b.drive.expect.eds = std::make_shared<const canopen::Eds>(canopen::Eds::parse(eds, "w.eds"));
+    b.drive.expect.eds_path = "w.eds";
+  });
+  const auto c = check(config);
+  const auto* row = red_row(c.report, "servo drive", "EDS");
+  ASSERT_NE(row, nullptr) << c.table;
+  EXPECT_NE(row->detail.find("0x6081:0 profile velocity: in the EDS but unreadable: EDS w.eds: "
+                             "[6081] AccessType = 'readwrite'"),
+            std::string::npos)
+      << row->detail;
+  const CheckRow* warnings = nullptr;
+  for (const auto& r : c.report.rows)
+    if (r.item == "EDS warnings") warnings = &r;
+  ASSERT_NE(warnings, nullptr) << c.table;
+  EXPECT_TRUE(warnings->ok) << c.table;
+  EXPECT_NE(warnings->device.find("servo drive"), std::string::npos) << c.table;
+  EXPECT_NE(warnings->detail.find("w.eds: 2 warnings: "), std::string::npos) << warnings->detail;
+  EXPECT_NE(warnings->detail.find("[2999sub1]: a sub-index of 0x2999"), std::string::npos)
+      << warnings->detail;
+}
+
 TEST(BenchCheck, WrongIdentityIsRed) {
   auto config = sim_config([](BenchConfig& b) { b.drive.expect.identity.vendor_id = 0x999; });
   const auto c = check(config);

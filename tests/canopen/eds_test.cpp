@@ -84,6 +84,14 @@ std::string error_of(const std::string& text) {
   return "";
 }
 
+// The warnings of a file that must read, one a line.
+std::string warnings_of(const std::string& text) {
+  std::string out;
+  const auto eds = Eds::parse(text, "test.eds");
+  for (const auto& w : eds.warnings()) out += w + "\n";
+  return out;
+}
+
 TEST(Eds, ReadsVarsRecordsSubIndicesAndDeviceInfo) {
   const auto eds = Eds::parse(kSmall, "small.eds");
   ASSERT_NE(eds.find(0x1000, 0), nullptr);
@@ -123,64 +131,95 @@ TEST(Eds, NodeIdExpressions) {
   }
 }
 
-TEST(EdsHostile, BadNodeIdExpressionNamesFileSectionKeyAndValue) {
-  const auto e =
-      error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\n"
-                    "DefaultValue=$NODEID*2"));
-  EXPECT_NE(e.find("test.eds"), std::string::npos) << e;
-  EXPECT_NE(e.find("[6060]"), std::string::npos) << e;
-  EXPECT_NE(e.find("DefaultValue"), std::string::npos) << e;
-  EXPECT_NE(e.find("$NODEID*2"), std::string::npos) << e;
+TEST(EdsHostile, BadNodeIdExpressionIsAWarningNamingFileSectionKeyAndValue) {
+  const auto text =
+      with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nDefaultValue=$NODEID*2");
+  const auto w = warnings_of(text);
+  EXPECT_NE(w.find("test.eds"), std::string::npos) << w;
+  EXPECT_NE(w.find("[6060]"), std::string::npos) << w;
+  EXPECT_NE(w.find("DefaultValue"), std::string::npos) << w;
+  EXPECT_NE(w.find("$NODEID*2"), std::string::npos) << w;
+  // The object stays, without the value.
+  const auto eds = Eds::parse(text, "test.eds");
+  ASSERT_NE(eds.find(0x6060, 0), nullptr);
+  EXPECT_EQ(eds.find(0x6060, 0)->default_value, "");
+  EXPECT_FALSE(eds.default_integer(*eds.find(0x6060, 0)));
 }
 
-TEST(EdsHostile, MissingKeysAreNamed) {
-  auto e = error_of(with("[6060]\nParameterName=Mode\nAccessType=rw"));
-  EXPECT_NE(e.find("[6060] DataType"), std::string::npos) << e;
-  EXPECT_NE(e.find("missing"), std::string::npos) << e;
-  e = error_of(with("[6060]\nDataType=0x0002\nAccessType=rw"));
-  EXPECT_NE(e.find("[6060] ParameterName"), std::string::npos) << e;
-  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002"));
-  EXPECT_NE(e.find("[6060] AccessType"), std::string::npos) << e;
-  e = error_of(with("[2000]\nParameterName=Rec\nObjectType=0x9"));
-  EXPECT_NE(e.find("[2000] SubNumber"), std::string::npos) << e;
+TEST(EdsHostile, MissingKeysAreNamedAndCostTheObjectOnly) {
+  auto text = with("[6060]\nParameterName=Mode\nAccessType=rw");
+  auto w = warnings_of(text);
+  EXPECT_NE(w.find("[6060] DataType"), std::string::npos) << w;
+  EXPECT_NE(w.find("missing"), std::string::npos) << w;
+  auto eds = Eds::parse(text, "test.eds");
+  EXPECT_EQ(eds.find(0x6060, 0), nullptr);
+  ASSERT_TRUE(eds.problem(0x6060, 0));
+  EXPECT_NE(eds.problem(0x6060, 0)->find("[6060] DataType"), std::string::npos);
+  EXPECT_NE(eds.find(0x6041, 0), nullptr);  // the rest of the file is read
+  EXPECT_FALSE(eds.problem(0x6041, 0));
+  EXPECT_FALSE(eds.problem(0x6099, 0));  // no section: no reason either
+  // A missing name is a warning; the object stays.
+  w = warnings_of(with("[6060]\nDataType=0x0002\nAccessType=rw"));
+  EXPECT_NE(w.find("[6060] ParameterName"), std::string::npos) << w;
+  text = with("[6060]\nParameterName=Mode\nDataType=0x0002");
+  w = warnings_of(text);
+  EXPECT_NE(w.find("[6060] AccessType"), std::string::npos) << w;
+  EXPECT_EQ(Eds::parse(text, "test.eds").find(0x6060, 0), nullptr);
+  w = warnings_of(with("[2000]\nParameterName=Rec\nObjectType=0x9"));
+  EXPECT_NE(w.find("[2000] SubNumber"), std::string::npos) << w;
 }
 
 TEST(EdsHostile, BadNumbersAndValuesAreNamed) {
-  auto e = error_of(with("[6060]\nParameterName=Mode\nDataType=0xG2\nAccessType=rw"));
-  EXPECT_NE(e.find("[6060] DataType = '0xG2'"), std::string::npos) << e;
-  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=readwrite"));
-  EXPECT_NE(e.find("AccessType = 'readwrite': expected ro, wo, rw"), std::string::npos) << e;
-  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nPDOMapping=2"));
-  EXPECT_NE(e.find("PDOMapping = '2'"), std::string::npos) << e;
-  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nLowLimit=low"));
-  EXPECT_NE(e.find("LowLimit = 'low'"), std::string::npos) << e;
-  e = error_of(with("[2001]\nParameterName=R\nDataType=0x0008\nAccessType=ro\nDefaultValue=1.5e"));
-  EXPECT_NE(e.find("a finite real number"), std::string::npos) << e;
-  e = error_of(with("[2002]\nParameterName=V\nObjectType=0x5\nDataType=0x0007\nAccessType=ro"));
-  EXPECT_NE(e.find("ObjectType = '0x5'"), std::string::npos) << e;
-  e = error_of(with("[2003]\nParameterName=V\nDataType=0x10000\nAccessType=ro"));
-  EXPECT_NE(e.find("DataType = '0x10000'"), std::string::npos) << e;
+  auto w = warnings_of(with("[6060]\nParameterName=Mode\nDataType=0xG2\nAccessType=rw"));
+  EXPECT_NE(w.find("[6060] DataType = '0xG2'"), std::string::npos) << w;
+  w = warnings_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=readwrite"));
+  EXPECT_NE(w.find("AccessType = 'readwrite': expected ro, wo, rw"), std::string::npos) << w;
+  w = warnings_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nPDOMapping=2"));
+  EXPECT_NE(w.find("PDOMapping = '2'"), std::string::npos) << w;
+  w = warnings_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\nLowLimit=low"));
+  EXPECT_NE(w.find("LowLimit = 'low'"), std::string::npos) << w;
+  w = warnings_of(
+      with("[2001]\nParameterName=R\nDataType=0x0008\nAccessType=ro\nDefaultValue=1.5e"));
+  EXPECT_NE(w.find("a finite real number"), std::string::npos) << w;
+  w = warnings_of(with("[2002]\nParameterName=V\nObjectType=0x4\nDataType=0x0007\nAccessType=ro"));
+  EXPECT_NE(w.find("[2002] ObjectType = '0x4'"), std::string::npos) << w;
+  w = warnings_of(with("[2003]\nParameterName=V\nDataType=0x10000\nAccessType=ro"));
+  EXPECT_NE(w.find("DataType = '0x10000'"), std::string::npos) << w;
+  // A value outside its type's range.
+  w = warnings_of(
+      with("[2004]\nParameterName=V\nDataType=0x0005\nAccessType=ro\nDefaultValue=256"));
+  EXPECT_NE(w.find("[2004] DefaultValue = '256': expected UNSIGNED8 in 0..255"), std::string::npos)
+      << w;
 }
 
-TEST(EdsHostile, StructureErrorsAreNamed) {
+TEST(EdsHostile, StructureErrorsAreWarningsNamingSectionAndKey) {
   // A sub-index without its record, a record whose SubNumber disagrees, duplicates.
-  auto e = error_of(with("[2100sub1]\nParameterName=x\nDataType=0x0007\nAccessType=ro"));
-  EXPECT_NE(e.find("[2100sub1]"), std::string::npos) << e;
-  e =
-      error_of(with("[2100]\nParameterName=R\nObjectType=0x9\nSubNumber=3\n"
-                    "[2100sub0]\nParameterName=n\nDataType=0x0005\nAccessType=const"));
-  EXPECT_NE(e.find("[2100] SubNumber = '3'"), std::string::npos) << e;
-  // A section twice: property_tree's parser names the line.
-  e = error_of(with("[6041]\nParameterName=again\nDataType=0x0006\nAccessType=ro"));
-  EXPECT_NE(e.find("test.eds: line 58: duplicate section"), std::string::npos) << e;
-  e = error_of(with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\naccesstype=ro"));
-  EXPECT_NE(e.find("[6060]"), std::string::npos) << e;
+  auto text = with("[2100sub1]\nParameterName=x\nDataType=0x0007\nAccessType=ro");
+  auto w = warnings_of(text);
+  EXPECT_NE(w.find("[2100sub1]"), std::string::npos) << w;
+  EXPECT_TRUE(Eds::parse(text, "t").problem(0x2100, 1));
+  w =
+      warnings_of(with("[2100]\nParameterName=R\nObjectType=0x9\nSubNumber=3\n"
+                       "[2100sub0]\nParameterName=n\nDataType=0x0005\nAccessType=const"));
+  EXPECT_NE(w.find("[2100] SubNumber = '3'"), std::string::npos) << w;
+  // A section twice: the first is used, the line named.
+  text = with("[6041]\nParameterName=again\nDataType=0x0007\nAccessType=rw");
+  w = warnings_of(text);
+  EXPECT_NE(w.find("test.eds: line 58: [6041] appears again"), std::string::npos) << w;
+  EXPECT_EQ(Eds::parse(text, "t").find(0x6041, 0)->name, "Statusword");
+  text = with("[6060]\nParameterName=Mode\nDataType=0x0002\nAccessType=rw\naccesstype=ro");
+  w = warnings_of(text);
+  EXPECT_NE(w.find("[6060] accesstype = 'ro': expected each key once"), std::string::npos) << w;
+  EXPECT_EQ(Eds::parse(text, "t").find(0x6060, 0)->access, EdsAccess::kRw);
   // A list naming an object that has no section.
-  e = error_of(std::string(kSmall) + "\n[OptionalObjects]\nSupportedObjects=1\n1=0x6502\n");
-  EXPECT_NE(e.find("[OptionalObjects] 1 = '0x6502'"), std::string::npos) << e;
-  // Not INI at all.
-  e = error_of("this is not an EDS\n");
+  w = warnings_of(std::string(kSmall) + "\n[OptionalObjects]\nSupportedObjects=1\n1=0x6502\n");
+  EXPECT_NE(w.find("[OptionalObjects] 1 = '0x6502'"), std::string::npos) << w;
+  // Not an EDS at all: no object section.
+  auto e = error_of("this is not an EDS\n");
   EXPECT_NE(e.find("test.eds"), std::string::npos) << e;
+  EXPECT_NE(e.find("no object sections"), std::string::npos) << e;
+  e = error_of("[FileInfo]\nFileName=x.eds\n");
+  EXPECT_NE(e.find("no object sections"), std::string::npos) << e;
   EXPECT_FALSE(error_of(std::string("[1000]\nParameterName=a\0b", 24)).empty());
 }
 

@@ -1,310 +1,452 @@
+// The object model of an EDS or DCF, built from its CiA 306 sections (eds_ini.cpp): which
+// section is which object, what each key means, and what a vendor's mistake costs (a warning,
+// or the one object it is in; never the file).
 #include "wavebench/canopen/eds.hpp"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <boost/property_tree/ini_parser.hpp>
-#include <boost/property_tree/ptree.hpp>
 #include <cctype>
-#include <charconv>
-#include <cmath>
 #include <fstream>
 #include <limits>
-#include <set>
-#include <sstream>
-#include <vector>
+
+#include "eds_detail.hpp"
 
 namespace wavebench::canopen {
 namespace {
 
-using boost::property_tree::ptree;
+using eds_detail::IniFile;
+using eds_detail::IniKey;
+using eds_detail::IniSection;
+using eds_detail::lower;
+using eds_detail::Warnings;
 
-std::string lower(std::string_view s) {
-  std::string out(s);
-  std::transform(out.begin(), out.end(), out.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return out;
+std::uint32_t key_of(std::uint16_t index, std::uint8_t sub) {
+  return static_cast<std::uint32_t>(index) << 8 | sub;
 }
-
-std::string_view trim(std::string_view s) {
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && std::isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
-  return s;
-}
-
-// Keys of an INI section, lower-cased: CiA 306 keys are case-insensitive, property_tree's are not.
-struct Section {
-  std::string name;
-  std::map<std::string, std::string> keys;
-};
 
 bool is_hex(std::string_view s) {
   return !s.empty() &&
          std::all_of(s.begin(), s.end(), [](unsigned char c) { return std::isxdigit(c) != 0; });
 }
 
+enum class SectionKind { kObject, kSub, kNames, kValues };
+
 struct ObjectSectionName {
   std::uint16_t index = 0;
-  std::optional<std::uint8_t> sub;
+  std::uint8_t sub = 0;
+  SectionKind kind = SectionKind::kObject;
 };
 
-// "6041" or "1018sub1"; nullopt for any other section ([FileInfo], [6041Name], tool sections).
+// "6041", "1018sub1", "1003Name", "1003Value" (any case); nullopt for any other section
+// ([FileInfo], [DummyUsage], [Comments], a vendor tool's own).
 std::optional<ObjectSectionName> object_section(std::string_view name) {
   if (name.size() < 4 || !is_hex(name.substr(0, 4))) return std::nullopt;
   ObjectSectionName out;
   out.index = static_cast<std::uint16_t>(std::stoul(std::string(name.substr(0, 4)), nullptr, 16));
   if (name.size() == 4) return out;
   const auto rest = lower(name.substr(4));
+  if (rest == "name" || rest == "value") {
+    out.kind = rest == "name" ? SectionKind::kNames : SectionKind::kValues;
+    return out;
+  }
   if (rest.size() < 4 || rest.compare(0, 3, "sub") != 0) return std::nullopt;
   const auto sub = std::string_view(rest).substr(3);
   if (!is_hex(sub) || sub.size() > 2) return std::nullopt;
   out.sub = static_cast<std::uint8_t>(std::stoul(std::string(sub), nullptr, 16));
+  out.kind = SectionKind::kSub;
   return out;
 }
 
-class Reader {
- public:
-  explicit Reader(std::string source) : source_(std::move(source)) {}
-
-  [[noreturn]] void fail(const Section& s, const std::string& key, const std::string& value,
-                         const std::string& expected) const {
-    throw EdsError(fmt::format("EDS {}: [{}] {} = '{}': expected {}", source_, s.name, key,
-                               value.size() > 80 ? value.substr(0, 80) + "..." : value, expected));
+std::string object_type_name(std::uint64_t type) {
+  switch (type) {
+    case kObjectDomain:
+      return "DOMAIN";
+    case kObjectDeftype:
+      return "DEFTYPE";
+    case kObjectDefstruct:
+      return "DEFSTRUCT";
+    case kObjectVar:
+      return "VAR";
+    case kObjectArray:
+      return "ARRAY";
+    case kObjectRecord:
+      return "RECORD";
+    default:
+      return fmt::format("0x{:X}", type);
   }
-  [[noreturn]] void fail_section(const std::string& section, const std::string& what) const {
-    throw EdsError(fmt::format("EDS {}: [{}]: {}", source_, section, what));
-  }
-
-  const std::string* get(const Section& s, const char* key) const {
-    const auto it = s.keys.find(lower(key));
-    return it == s.keys.end() ? nullptr : &it->second;
-  }
-  const std::string& required(const Section& s, const char* key) const {
-    const auto* v = get(s, key);
-    if (!v) fail(s, key, "", "the key (it is missing)");
-    return *v;
-  }
-  std::int64_t integer(const Section& s, const char* key, const std::string& value, std::int64_t lo,
-                       std::int64_t hi) const {
-    std::int64_t v = 0;
-    try {
-      v = parse_eds_integer(value);
-    } catch (const std::invalid_argument& e) {
-      fail(s, key, value, fmt::format("an integer in {}..{} ({})", lo, hi, e.what()));
-    }
-    if (v < lo || v > hi) fail(s, key, value, fmt::format("an integer in {}..{}", lo, hi));
-    return v;
-  }
-
-  // A value of `type` with $NODEID allowed: checked here so that a bad one fails at load.
-  void check_value(const Section& s, const char* key, const std::string& value,
-                   std::uint16_t type) const {
-    const auto text = trim(value);
-    if (text.empty()) return;
-    switch (type) {
-      case datatype::kVisibleString:
-      case datatype::kOctetString:
-        return;
-      case datatype::kReal32:
-      case datatype::kReal64: {
-        const std::string t(text);
-        char* end = nullptr;
-        const double d = std::strtod(t.c_str(), &end);
-        if (end != t.c_str() + t.size() || !std::isfinite(d))
-          fail(s, key, value, "a finite real number");
-        return;
-      }
-      default:
-        break;
-    }
-    try {
-      parse_eds_integer(text, 1);
-    } catch (const std::invalid_argument& e) {
-      fail(s, key, value, std::string("an integer, optionally with $NODEID+ (") + e.what() + ")");
-    }
-  }
-
-  EdsObject value_object(const Section& s, std::uint16_t index, std::uint8_t sub,
-                         std::uint8_t object_type) const {
-    EdsObject o;
-    o.index = index;
-    o.sub = sub;
-    o.object_type = object_type;
-    o.name = std::string(trim(required(s, "ParameterName")));
-    if (o.name.empty() || o.name.size() > 241)
-      fail(s, "ParameterName", o.name, "a name of 1 to 241 characters");
-    o.data_type =
-        static_cast<std::uint16_t>(integer(s, "DataType", required(s, "DataType"), 1, 0xFFFF));
-    const auto& access = required(s, "AccessType");
-    const auto a = lower(trim(access));
-    if (a == "ro") {
-      o.access = EdsAccess::kRo;
-    } else if (a == "wo") {
-      o.access = EdsAccess::kWo;
-    } else if (a == "rw") {
-      o.access = EdsAccess::kRw;
-    } else if (a == "rwr") {
-      o.access = EdsAccess::kRwr;
-    } else if (a == "rww") {
-      o.access = EdsAccess::kRww;
-    } else if (a == "const") {
-      o.access = EdsAccess::kConst;
-    } else {
-      fail(s, "AccessType", access, "ro, wo, rw, rwr, rww or const");
-    }
-    if (const auto* m = get(s, "PDOMapping")) o.pdo_mapping = integer(s, "PDOMapping", *m, 0, 1);
-    if (const auto* d = get(s, "DefaultValue")) {
-      check_value(s, "DefaultValue", *d, o.data_type);
-      o.default_value = std::string(trim(*d));
-    }
-    if (const auto* l = get(s, "LowLimit")) {
-      check_value(s, "LowLimit", *l, o.data_type);
-      o.low_limit = std::string(trim(*l));
-    }
-    if (const auto* h = get(s, "HighLimit")) {
-      check_value(s, "HighLimit", *h, o.data_type);
-      o.high_limit = std::string(trim(*h));
-    }
-    return o;
-  }
-
-  const std::string& source() const { return source_; }
-
- private:
-  std::string source_;
-};
-
-std::uint32_t key_of(std::uint16_t index, std::uint8_t sub) {
-  return static_cast<std::uint32_t>(index) << 8 | sub;
 }
 
 }  // namespace
 
-std::string data_type_name(std::uint16_t type) {
-  switch (type) {
-    case datatype::kBoolean:
-      return "BOOLEAN";
-    case datatype::kInteger8:
-      return "INTEGER8";
-    case datatype::kInteger16:
-      return "INTEGER16";
-    case datatype::kInteger32:
-      return "INTEGER32";
-    case datatype::kUnsigned8:
-      return "UNSIGNED8";
-    case datatype::kUnsigned16:
-      return "UNSIGNED16";
-    case datatype::kUnsigned32:
-      return "UNSIGNED32";
-    case datatype::kReal32:
-      return "REAL32";
-    case datatype::kVisibleString:
-      return "VISIBLE_STRING";
-    case datatype::kOctetString:
-      return "OCTET_STRING";
-    case datatype::kReal64:
-      return "REAL64";
-    case datatype::kInteger64:
-      return "INTEGER64";
-    case datatype::kUnsigned64:
-      return "UNSIGNED64";
-    default:
-      return fmt::format("type 0x{:04X}", type);
-  }
-}
+// Fills an Eds from the sections of one file; a friend of Eds.
+class EdsBuilder {
+ public:
+  EdsBuilder(const IniFile& ini, Warnings& warnings, Eds& eds)
+      : ini_(ini), warn_(warnings), eds_(eds) {}
 
-std::size_t data_type_size(std::uint16_t type) noexcept {
-  switch (type) {
-    case datatype::kBoolean:
-    case datatype::kInteger8:
-    case datatype::kUnsigned8:
-      return 1;
-    case datatype::kInteger16:
-    case datatype::kUnsigned16:
-      return 2;
-    case datatype::kInteger32:
-    case datatype::kUnsigned32:
-    case datatype::kReal32:
-      return 4;
-    case datatype::kReal64:
-    case datatype::kInteger64:
-    case datatype::kUnsigned64:
-      return 8;
-    default:
-      return 0;
-  }
-}
-
-std::string_view to_string(EdsAccess access) noexcept {
-  switch (access) {
-    case EdsAccess::kRo:
-      return "ro";
-    case EdsAccess::kWo:
-      return "wo";
-    case EdsAccess::kRw:
-      return "rw";
-    case EdsAccess::kRwr:
-      return "rwr";
-    case EdsAccess::kRww:
-      return "rww";
-    case EdsAccess::kConst:
-      return "const";
-  }
-  return "?";
-}
-
-std::int64_t parse_eds_integer(std::string_view text, std::uint8_t node_id) {
-  auto t = trim(text);
-  if (t.empty()) throw std::invalid_argument("empty");
-  if (t.size() > 40) throw std::invalid_argument("too long for a number");
-  std::int64_t add = 0;
-  const std::string l = lower(t);
-  constexpr std::string_view kNodeId = "$nodeid";
-  if (const auto at = l.find('$'); at != std::string::npos) {
-    std::string_view rest = std::string_view(l);
-    if (rest.substr(at, kNodeId.size()) != kNodeId)
-      throw std::invalid_argument("'$' must begin $NODEID");
-    if (l.find('$', at + 1) != std::string::npos)
-      throw std::invalid_argument("$NODEID more than once");
-    const auto before = trim(rest.substr(0, at));
-    const auto after = trim(rest.substr(at + kNodeId.size()));
-    if (before.empty() && after.empty()) return node_id;
-    if (before.empty()) {
-      if (after.front() != '+') throw std::invalid_argument("expected '+' after $NODEID");
-      t = trim(t.substr(t.size() - after.size() + 1));
-    } else {
-      if (!after.empty() || before.back() != '+')
-        throw std::invalid_argument("expected N+$NODEID or $NODEID+N");
-      t = trim(t.substr(0, before.size() - 1));
+  void build() {
+    classify();
+    if (parents_.empty() && subs_.empty())
+      throw EdsError(
+          fmt::format("EDS {}: no object sections ([1000], [1018sub1], ...): expected "
+                      "a CiA 306 EDS or DCF",
+                      eds_.source_));
+    for (const auto& [index, section] : parents_) object(index, *section);
+    for (const auto& [index, subs] : subs_) {
+      if (parents_.contains(index)) continue;
+      for (const auto& [sub, section] : subs) {
+        eds_.problems_[key_of(index, sub)] = warn_.section(
+            section->name, fmt::format("a sub-index of 0x{:04X}, which has no section [{:04X}]; "
+                                       "left out",
+                                       index, index));
+      }
     }
-    if (t.empty()) throw std::invalid_argument("no number beside $NODEID");
-    add = node_id;
+    object_lists();
+    device_info();
+    commissioning();
   }
-  bool negative = false;
-  if (t.front() == '-' || t.front() == '+') {
-    negative = t.front() == '-';
-    t.remove_prefix(1);
+
+ private:
+  // Where each object's sections are; duplicates of one sub-index warn (the first is used).
+  void classify() {
+    for (const auto& s : ini_.sections) {
+      const auto id = object_section(s.name);
+      if (!id) continue;
+      switch (id->kind) {
+        case SectionKind::kObject:
+          parents_[id->index] = &s;  // the line reader made section names unique
+          break;
+        case SectionKind::kSub: {
+          auto& subs = subs_[id->index];
+          if (!subs.emplace(id->sub, &s).second)
+            warn_.section(s.name, fmt::format("sub-index {} again (first as [{}]): ignored",
+                                              id->sub, subs[id->sub]->name));
+          break;
+        }
+        case SectionKind::kNames:
+          names_[id->index] = &s;
+          break;
+        case SectionKind::kValues:
+          values_[id->index] = &s;
+          break;
+      }
+    }
   }
-  int base = 10;
-  if (t.size() > 2 && t[0] == '0' && (t[1] == 'x' || t[1] == 'X')) {
-    base = 16;
-    t.remove_prefix(2);
-  } else if (t.size() > 1 && t[0] == '0') {
-    base = 8;
-    t.remove_prefix(1);
+
+  // A key's value, nullptr when absent or empty (CiA 306: an empty value is not given).
+  static const IniKey* given(const IniSection& s, std::string_view key) {
+    const auto* k = s.get(key);
+    return k && !k->value.empty() ? k : nullptr;
   }
-  std::uint64_t magnitude = 0;
-  const auto [end, ec] = std::from_chars(t.data(), t.data() + t.size(), magnitude, base);
-  if (ec == std::errc::result_out_of_range) throw std::invalid_argument("out of range");
-  if (ec != std::errc() || end != t.data() + t.size() || t.empty())
-    throw std::invalid_argument(base == 16  ? "not a hex number"
-                                : base == 8 ? "not an octal number"
-                                            : "not a decimal number");
-  constexpr auto kMax = static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max());
-  if (magnitude > kMax) throw std::invalid_argument("out of range");
-  const auto v = static_cast<std::int64_t>(magnitude);
-  return (negative ? -v : v) + add;
-}
+
+  // An unsigned key in lo..hi; nullopt (with a warning) when malformed, nullopt when not given.
+  std::optional<std::uint64_t> number(const IniSection& s, std::string_view key, std::uint64_t lo,
+                                      std::uint64_t hi, std::string* warning = nullptr) {
+    const auto* k = given(s, key);
+    if (!k) return std::nullopt;
+    std::string why;
+    try {
+      if (lower(k->value).find('$') != std::string::npos)
+        throw std::invalid_argument("$NODEID has no place here");
+      const auto v = parse_eds_unsigned(k->value);
+      if (v >= lo && v <= hi) return v;
+      why = "out of range";
+    } catch (const std::invalid_argument& e) {
+      why = e.what();
+    }
+    const auto text = warn_.value(s.name, k->name, k->value,
+                                  fmt::format("an integer in {}..{} ({})", lo, hi, why));
+    if (warning) *warning = text;
+    return std::nullopt;
+  }
+
+  void object(std::uint16_t index, const IniSection& s) {
+    std::uint64_t type = kObjectVar;  // CiA 306: VAR when ObjectType is not given
+    if (given(s, "ObjectType")) {
+      std::string why;
+      const auto t = number(s, "ObjectType", 0, 0xFF, &why);
+      if (!t) {
+        eds_.index_problems_[index] = why;
+        return;
+      }
+      type = *t;
+    }
+    const auto subs = subs_.find(index);
+    switch (type) {
+      case kObjectVar:
+      case kObjectDomain:
+      case kObjectDeftype:
+        add(value_object(s, index, 0, static_cast<std::uint8_t>(type)));
+        if (subs != subs_.end()) {
+          for (const auto& [sub, section] : subs->second) {
+            eds_.problems_[key_of(index, sub)] = warn_.section(
+                section->name, fmt::format("a sub-index of [{}], which is a {} (no sub-indices); "
+                                           "left out",
+                                           s.name, object_type_name(type)));
+          }
+        }
+        return;
+      case kObjectArray:
+      case kObjectRecord:
+      case kObjectDefstruct:
+        container(index, s, static_cast<std::uint8_t>(type));
+        return;
+      default:
+        eds_.index_problems_[index] = warn_.value(
+            s.name, s.get("ObjectType")->name, s.get("ObjectType")->value,
+            "0x2 (DOMAIN), 0x5 (DEFTYPE), 0x6 (DEFSTRUCT), 0x7 (VAR), 0x8 (ARRAY) or 0x9 "
+            "(RECORD); the object is left out");
+        return;
+    }
+  }
+
+  void add(std::optional<EdsObject> o) {
+    if (o) eds_.objects_[key_of(o->index, o->sub)] = std::move(*o);
+  }
+
+  // An ARRAY, RECORD or DEFSTRUCT: its [XXXXsubN] sections, or CompactSubObj expanded.
+  void container(std::uint16_t index, const IniSection& s, std::uint8_t type) {
+    if (!given(s, "ParameterName")) warn_.value(s.name, "ParameterName", "", "a name");
+    std::uint64_t compact = 0;
+    if (given(s, "CompactSubObj")) {
+      compact = number(s, "CompactSubObj", 0, 254).value_or(0);
+      if (compact > 0 && type != kObjectArray) {
+        warn_.value(s.name, s.get("CompactSubObj")->name, s.get("CompactSubObj")->value,
+                    fmt::format("CompactSubObj only on an ARRAY (this is a {}); the [{:04X}subN] "
+                                "sections are used",
+                                object_type_name(type), index));
+        compact = 0;
+      }
+    }
+    const auto subs = subs_.find(index);
+    const std::size_t sections = subs == subs_.end() ? 0 : subs->second.size();
+    if (compact > 0) {
+      expand(index, s, static_cast<std::uint8_t>(compact));
+    } else if (!s.get("SubNumber")) {
+      warn_.value(s.name, "SubNumber", "",
+                  fmt::format("the number of sub-indices (missing; {} [{:04X}subN] sections "
+                              "found)",
+                              sections, index));
+    } else if (const auto n = number(s, "SubNumber", 0, 255); n && *n != sections) {
+      warn_.value(s.name, s.get("SubNumber")->name, s.get("SubNumber")->value,
+                  fmt::format("the number of [{:04X}subN] sections, {}", index, sections));
+    }
+    if (subs == subs_.end()) return;
+    // Written sub-sections; beside CompactSubObj they are the more specific and replace it.
+    for (const auto& [sub, section] : subs->second) add(value_object(*section, index, sub, type));
+  }
+
+  // CiA 306 CompactSubObj=N: sub 0 holds N, subs 1..N share the section's type and access, with
+  // names from [XXXXName] (else ParameterName and the sub-index) and DCF values from
+  // [XXXXValue].
+  void expand(std::uint16_t index, const IniSection& s, std::uint8_t count) {
+    auto shared = value_object(s, index, 1, kObjectArray);
+    if (!shared) {
+      eds_.index_problems_[index] = eds_.problems_[key_of(index, 1)];
+      eds_.problems_.erase(key_of(index, 1));
+      return;
+    }
+    EdsObject sub0;
+    sub0.index = index;
+    sub0.sub = 0;
+    sub0.name = "NrOfObjects";
+    sub0.object_type = kObjectArray;
+    sub0.data_type = datatype::kUnsigned8;
+    sub0.access = EdsAccess::kRo;
+    sub0.default_value = std::to_string(count);
+    add(sub0);
+    const auto names = entries(names_, index, count);
+    const auto values = entries(values_, index, count);
+    for (std::uint8_t sub = 1; sub <= count; ++sub) {
+      EdsObject o = *shared;
+      o.sub = sub;
+      const auto name = names.find(sub);
+      o.name = name != names.end() ? name->second.value : fmt::format("{}{}", shared->name, sub);
+      o.parameter_value.reset();
+      if (const auto v = values.find(sub); v != values.end()) {
+        if (const auto bad = eds_detail::check_value(v->second.value, o.data_type)) {
+          warn_.value(values_.at(index)->name, v->second.name, v->second.value, *bad);
+        } else {
+          o.parameter_value = v->second.value;
+        }
+      }
+      add(std::move(o));
+    }
+  }
+
+  // The entries 1..count of a [XXXXName] or [XXXXValue] section, by sub-index.
+  std::map<std::uint8_t, IniKey> entries(const std::map<std::uint16_t, const IniSection*>& of,
+                                         std::uint16_t index, std::uint8_t count) {
+    std::map<std::uint8_t, IniKey> out;
+    const auto it = of.find(index);
+    if (it == of.end()) return out;
+    const auto& s = *it->second;
+    for (const auto& [lower_key, key] : s.keys) {
+      if (lower_key == "nrofentries") continue;
+      std::uint64_t sub = 0;
+      try {
+        sub = parse_eds_unsigned(lower_key);
+      } catch (const std::invalid_argument&) {
+        continue;  // a key of a vendor's tool
+      }
+      if (sub < 1 || sub > count) {
+        warn_.value(s.name, key.name, key.value,
+                    fmt::format("a sub-index in 1..{} (CompactSubObj of [{:04X}])", count, index));
+        continue;
+      }
+      out.emplace(static_cast<std::uint8_t>(sub), key);
+    }
+    if (const auto n = number(s, "NrOfEntries", 0, 255); n && *n != out.size())
+      warn_.value(s.name, s.get("NrOfEntries")->name, s.get("NrOfEntries")->value,
+                  fmt::format("the number of entries, {}", out.size()));
+    return out;
+  }
+
+  // A value of the object's type, or a warning and nothing.
+  std::optional<std::string> value(const IniSection& s, std::string_view key,
+                                   std::uint16_t data_type) {
+    const auto* k = given(s, key);
+    if (!k) return std::nullopt;
+    if (const auto bad = eds_detail::check_value(k->value, data_type)) {
+      warn_.value(s.name, k->name, k->value, *bad + "; ignored");
+      return std::nullopt;
+    }
+    return k->value;
+  }
+
+  // One value object; nullopt, a warning and a problem when its DataType or AccessType is
+  // missing or unreadable.
+  std::optional<EdsObject> value_object(const IniSection& s, std::uint16_t index, std::uint8_t sub,
+                                        std::uint8_t object_type) {
+    EdsObject o;
+    o.index = index;
+    o.sub = sub;
+    o.object_type = object_type;
+    if (const auto* n = given(s, "ParameterName")) {
+      o.name = n->value;
+      if (o.name.size() > 241) warn_.value(s.name, n->name, n->value, "at most 241 characters");
+    } else if (object_type != kObjectArray || sub == 0 || !s.get("CompactSubObj")) {
+      warn_.value(s.name, "ParameterName", "", "a name (it is missing)");
+    }
+    // CiA 306: a DOMAIN's DataType and AccessType may be left out (DOMAIN, rw).
+    const bool domain = object_type == kObjectDomain;
+    auto left_out = [&](const IniKey* k, std::string_view key, std::string_view expected) {
+      eds_.problems_[key_of(index, sub)] =
+          warn_.value(s.name, k ? k->name : std::string(key), k ? k->value : "",
+                      fmt::format("{}; the object is left out", expected));
+      return std::nullopt;
+    };
+    if (const auto* t = given(s, "DataType")) {
+      std::string why;
+      try {
+        const auto v = parse_eds_unsigned(t->value);
+        if (v < 1 || v > 0xFFFF) throw std::invalid_argument("out of range");
+        o.data_type = static_cast<std::uint16_t>(v);
+      } catch (const std::invalid_argument& e) {
+        return left_out(t, "DataType", fmt::format("a data type index in 1..65535 ({})", e.what()));
+      }
+    } else if (domain) {
+      o.data_type = datatype::kDomain;
+    } else {
+      return left_out(s.get("DataType"), "DataType", "a data type index (it is missing)");
+    }
+    if (const auto* a = given(s, "AccessType")) {
+      const auto access = lower(a->value);
+      if (access == "ro") {
+        o.access = EdsAccess::kRo;
+      } else if (access == "wo") {
+        o.access = EdsAccess::kWo;
+      } else if (access == "rw") {
+        o.access = EdsAccess::kRw;
+      } else if (access == "rwr") {
+        o.access = EdsAccess::kRwr;
+      } else if (access == "rww") {
+        o.access = EdsAccess::kRww;
+      } else if (access == "const") {
+        o.access = EdsAccess::kConst;
+      } else {
+        return left_out(a, "AccessType", "ro, wo, rw, rwr, rww or const");
+      }
+    } else if (domain) {
+      o.access = EdsAccess::kRw;
+    } else {
+      return left_out(s.get("AccessType"), "AccessType",
+                      "ro, wo, rw, rwr, rww or const (it is "
+                      "missing)");
+    }
+    if (given(s, "PDOMapping")) o.pdo_mapping = number(s, "PDOMapping", 0, 1).value_or(0) == 1;
+    o.default_value = value(s, "DefaultValue", o.data_type).value_or("");
+    o.low_limit = value(s, "LowLimit", o.data_type);
+    o.high_limit = value(s, "HighLimit", o.data_type);
+    o.parameter_value = value(s, "ParameterValue", o.data_type);
+    return o;
+  }
+
+  // [MandatoryObjects], [OptionalObjects], [ManufacturerObjects]: each entry has a section.
+  void object_lists() {
+    for (const char* list : {"MandatoryObjects", "OptionalObjects", "ManufacturerObjects"}) {
+      const auto* s = ini_.get(list);
+      if (!s) continue;
+      std::size_t entries = 0;
+      for (const auto& [lower_key, key] : s->keys) {
+        if (lower_key == "supportedobjects") continue;
+        try {
+          (void)parse_eds_unsigned(lower_key);
+        } catch (const std::invalid_argument&) {
+          continue;  // a key of a vendor's tool
+        }
+        ++entries;
+        std::uint64_t index = 0;
+        try {
+          index = parse_eds_unsigned(key.value);
+          if (index > 0xFFFF) throw std::invalid_argument("out of range");
+        } catch (const std::invalid_argument& e) {
+          warn_.value(s->name, key.name, key.value,
+                      fmt::format("an object index in 0..0xFFFF ({})", e.what()));
+          continue;
+        }
+        if (!parents_.contains(static_cast<std::uint16_t>(index)))
+          warn_.value(s->name, key.name, key.value,
+                      fmt::format("an object with a section ([{:04X}] is missing)", index));
+      }
+      if (const auto n = number(*s, "SupportedObjects", 0, 0xFFFF); n && *n != entries)
+        warn_.value(s->name, s->get("SupportedObjects")->name, s->get("SupportedObjects")->value,
+                    fmt::format("the number of entries, {}", entries));
+    }
+  }
+
+  void device_info() {
+    const auto* s = ini_.get("DeviceInfo");
+    if (!s) return;
+    auto id = [&](const char* key, std::optional<std::uint32_t>& out) {
+      if (const auto v = number(*s, key, 0, 0xFFFFFFFFULL)) out = static_cast<std::uint32_t>(*v);
+    };
+    id("VendorNumber", eds_.vendor_);
+    id("ProductNumber", eds_.product_);
+    id("RevisionNumber", eds_.revision_);
+    if (const auto* k = given(*s, "VendorName")) eds_.vendor_name_ = k->value;
+    if (const auto* k = given(*s, "ProductName")) eds_.product_name_ = k->value;
+  }
+
+  void commissioning() {
+    const auto* s = ini_.get("DeviceComissioning");
+    if (!s) return;
+    auto& c = eds_.commissioning_;
+    if (const auto v = number(*s, "NodeID", 1, 127)) c.node_id = static_cast<std::uint8_t>(*v);
+    if (const auto v = number(*s, "Baudrate", 1, 1000))
+      c.baudrate_kbit = static_cast<std::uint32_t>(*v);
+    if (const auto* k = given(*s, "NodeName")) c.node_name = k->value;
+  }
+
+  const IniFile& ini_;
+  Warnings& warn_;
+  Eds& eds_;
+  std::map<std::uint16_t, const IniSection*> parents_;
+  std::map<std::uint16_t, std::map<std::uint8_t, const IniSection*>> subs_;
+  std::map<std::uint16_t, const IniSection*> names_;
+  std::map<std::uint16_t, const IniSection*> values_;
+};
 
 Eds Eds::load(const std::filesystem::path& path) {
   const std::string name = path.string();
@@ -327,101 +469,15 @@ Eds Eds::parse(const std::string& text, const std::string& source) {
   if (text.size() > kMaxFileBytes)
     throw EdsError(fmt::format("EDS {}: {} bytes: expected at most {} bytes", source, text.size(),
                                kMaxFileBytes));
-  if (text.find('\0') != std::string::npos)
-    throw EdsError(fmt::format("EDS {}: contains a NUL byte: expected INI text", source));
-  ptree tree;
-  try {
-    std::istringstream in(text);
-    boost::property_tree::ini_parser::read_ini(in, tree);
-  } catch (const boost::property_tree::ini_parser_error& e) {
-    throw EdsError(fmt::format("EDS {}: line {}: {}", source, e.line(), e.message()));
-  }
-  Reader reader(source);
-  std::vector<Section> sections;
-  std::map<std::string, std::size_t> by_name;  // lower-case name -> position
-  for (const auto& [name, body] : tree) {
-    if (body.empty() && !body.data().empty())
-      throw EdsError(fmt::format("EDS {}: key '{}' outside any section", source, name));
-    Section s{name, {}};
-    for (const auto& [key, value] : body) {
-      if (!s.keys.emplace(lower(key), value.data()).second)
-        reader.fail(s, key, value.data(), "each key once (keys are case-insensitive)");
-    }
-    if (!by_name.emplace(lower(name), sections.size()).second)
-      reader.fail_section(name, "appears twice (section names are case-insensitive)");
-    sections.push_back(std::move(s));
-  }
-
+  if (const auto nul = text.find('\0'); nul != std::string::npos)
+    throw EdsError(fmt::format("EDS {}: a NUL byte at offset {}: expected text", source, nul));
   Eds eds;
   eds.source_ = source;
-  std::map<std::uint16_t, std::pair<const Section*, std::int64_t>> containers;  // sub counts
-  for (const auto& s : sections) {
-    const auto id = object_section(s.name);
-    if (!id || id->sub) continue;
-    const std::int64_t type =
-        reader.get(s, "ObjectType")
-            ? reader.integer(s, "ObjectType", *reader.get(s, "ObjectType"), 0, 0xFF)
-            : kObjectVar;
-    if (type == kObjectVar) {
-      eds.objects_[key_of(id->index, 0)] =
-          reader.value_object(s, id->index, 0, static_cast<std::uint8_t>(type));
-    } else if (type == kObjectArray || type == kObjectRecord) {
-      reader.required(s, "ParameterName");
-      if (reader.get(s, "CompactSubObj"))
-        reader.fail(s, "CompactSubObj", *reader.get(s, "CompactSubObj"),
-                    "no CompactSubObj (write one [XXXXsubN] section per sub-index)");
-      const auto n = reader.integer(s, "SubNumber", reader.required(s, "SubNumber"), 1, 255);
-      containers[id->index] = {&s, n};
-    } else {
-      reader.fail(s, "ObjectType", *reader.get(s, "ObjectType"),
-                  "0x7 (VAR), 0x8 (ARRAY) or 0x9 (RECORD)");
-    }
-  }
-  std::map<std::uint16_t, std::int64_t> subs_seen;
-  for (const auto& s : sections) {
-    const auto id = object_section(s.name);
-    if (!id || !id->sub) continue;
-    const auto parent = containers.find(id->index);
-    if (parent == containers.end())
-      reader.fail_section(s.name, fmt::format("a sub-index of 0x{:04X}, which has no ARRAY or "
-                                              "RECORD section [{:04X}]",
-                                              id->index, id->index));
-    const auto type = static_cast<std::uint8_t>(
-        reader.integer(*parent->second.first, "ObjectType",
-                       *reader.get(*parent->second.first, "ObjectType"), 0, 0xFF));
-    eds.objects_[key_of(id->index, *id->sub)] = reader.value_object(s, id->index, *id->sub, type);
-    ++subs_seen[id->index];
-  }
-  for (const auto& [index, parent] : containers) {
-    const auto seen = subs_seen[index];
-    if (seen != parent.second)
-      reader.fail(*parent.first, "SubNumber", std::to_string(parent.second),
-                  fmt::format("the number of [{:04X}subN] sections, {}", index, seen));
-  }
-
-  // The object lists must name objects that have sections.
-  for (const char* list : {"MandatoryObjects", "OptionalObjects", "ManufacturerObjects"}) {
-    const auto it = by_name.find(lower(list));
-    if (it == by_name.end()) continue;
-    const auto& s = sections[it->second];
-    for (const auto& [key, value] : s.keys) {
-      if (key == "supportedobjects") continue;
-      const auto index = reader.integer(s, key.c_str(), value, 0, 0xFFFF);
-      if (!eds.has_index(static_cast<std::uint16_t>(index)))
-        reader.fail(s, key.c_str(), value,
-                    fmt::format("an object with a section ([{:04X}] is missing)", index));
-    }
-  }
-  if (const auto it = by_name.find("deviceinfo"); it != by_name.end()) {
-    const auto& s = sections[it->second];
-    auto number = [&](const char* key, std::optional<std::uint32_t>& out) {
-      if (const auto* v = reader.get(s, key))
-        out = static_cast<std::uint32_t>(reader.integer(s, key, *v, 0, 0xFFFFFFFFLL));
-    };
-    number("VendorNumber", eds.vendor_);
-    number("ProductNumber", eds.product_);
-    number("RevisionNumber", eds.revision_);
-  }
+  Warnings warnings(source, kMaxWarnings);
+  const auto ini = eds_detail::read_ini(eds_detail::to_utf8(text),
+                                        {kMaxLineBytes, kMaxSections, kMaxKeys}, warnings);
+  EdsBuilder(ini, warnings, eds).build();
+  eds.warnings_ = warnings.take();
   return eds;
 }
 
@@ -435,19 +491,48 @@ bool Eds::has_index(std::uint16_t index) const {
   return it != objects_.end() && it->second.index == index;
 }
 
+std::optional<std::string> Eds::problem(std::uint16_t index, std::uint8_t sub) const {
+  if (find(index, sub)) return std::nullopt;
+  if (const auto it = problems_.find(key_of(index, sub)); it != problems_.end()) return it->second;
+  if (const auto it = index_problems_.find(index); it != index_problems_.end()) return it->second;
+  return std::nullopt;
+}
+
 std::optional<std::int64_t> Eds::default_integer(const EdsObject& object,
                                                  std::uint8_t node_id) const {
-  if (object.default_value.empty()) return std::nullopt;
-  if (object.data_type == datatype::kVisibleString || object.data_type == datatype::kOctetString ||
-      object.data_type == datatype::kReal32 || object.data_type == datatype::kReal64)
-    return std::nullopt;
+  if (object.default_value.empty() || !is_integer_type(object.data_type)) return std::nullopt;
+  const auto bits = 8 * data_type_size(object.data_type);
   try {
-    return parse_eds_integer(object.default_value, node_id);
-  } catch (const std::invalid_argument& e) {
-    throw EdsError(fmt::format(
-        "EDS {}: [{:04X}{}] DefaultValue = '{}': expected an integer ({})", source_, object.index,
-        object.object_type == kObjectVar ? "" : fmt::format("sub{:X}", object.sub),
-        object.default_value, e.what()));
+    if (is_unsigned_type(object.data_type)) {
+      const auto v = parse_eds_unsigned(object.default_value, node_id);
+      if (v > static_cast<std::uint64_t>(std::numeric_limits<std::int64_t>::max()))
+        return std::nullopt;
+      return static_cast<std::int64_t>(v);
+    }
+    // A signed type written as its bit pattern (INTEGER16 0xFFFF) is sign-extended.
+    const auto v = parse_eds_unsigned(object.default_value, node_id);
+    if (bits == 64) return static_cast<std::int64_t>(v);
+    const std::uint64_t sign = std::uint64_t{1} << (bits - 1);
+    if (v >= sign && v < sign << 1)
+      return static_cast<std::int64_t>(v) - static_cast<std::int64_t>(sign << 1);
+    if (v >= sign << 1) return std::nullopt;
+    return static_cast<std::int64_t>(v);
+  } catch (const std::invalid_argument&) {
+  }
+  try {
+    return parse_eds_integer(object.default_value, node_id);  // a negative one
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
+  }
+}
+
+std::optional<std::uint64_t> Eds::default_unsigned(const EdsObject& object,
+                                                   std::uint8_t node_id) const {
+  if (object.default_value.empty() || !is_unsigned_type(object.data_type)) return std::nullopt;
+  try {
+    return parse_eds_unsigned(object.default_value, node_id);
+  } catch (const std::invalid_argument&) {
+    return std::nullopt;
   }
 }
 

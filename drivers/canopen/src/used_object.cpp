@@ -13,7 +13,11 @@ std::vector<std::string> check_against_eds(std::span<const UsedObject> used, con
   for (const auto& u : used) {
     const auto* o = eds.find(u.index, u.sub);
     if (!o) {
-      if (!u.optional()) problems.push_back(describe(u) + ": not in the EDS");
+      // An object the file has a section for but that could not be read says why.
+      if (u.optional()) continue;
+      const auto why = eds.problem(u.index, u.sub);
+      problems.push_back(describe(u) +
+                         (why ? ": in the EDS but unreadable: " + *why : ": not in the EDS"));
       continue;
     }
     if (o->data_type != u.data_type && (u.alt_data_type == 0 || o->data_type != u.alt_data_type)) {

@@ -84,11 +84,26 @@ class Check {
       add(device_label(d), "EDS", true,
           fmt::format("{}: all {} used objects agree (type, access, PDO mapping)", file,
                       d.used.size()));
-      return;
+    } else {
+      std::string text = file + ": ";
+      for (std::size_t i = 0; i < problems.size(); ++i) text += (i ? "; " : "") + problems[i];
+      add(device_label(d), "EDS", false, text);
     }
-    std::string text = file + ": ";
-    for (std::size_t i = 0; i < problems.size(); ++i) text += (i ? "; " : "") + problems[i];
-    add(device_label(d), "EDS", false, text);
+    eds_warnings_row(d, file);
+  }
+
+  // What the EDS reader tolerated: not red (an object the bench uses and could not be read is
+  // already red above), but shown, the first few only so the row stays readable.
+  void eds_warnings_row(const BenchCanopenDevice& d, const std::string& file) {
+    const auto& warnings = d.expect->eds->warnings();
+    if (warnings.empty()) return;
+    constexpr std::size_t kShown = 5;
+    std::string text =
+        fmt::format("{}: {} warning{}: ", file, warnings.size(), warnings.size() == 1 ? "" : "s");
+    for (std::size_t i = 0; i < warnings.size() && i < kShown; ++i)
+      text += (i ? "; " : "") + warnings[i];
+    if (warnings.size() > kShown) text += fmt::format("; and {} more", warnings.size() - kShown);
+    add(device_label(d), "EDS warnings", true, text);
   }
 
   // Node answers, device type, identity, each used object. False when the node is silent.
