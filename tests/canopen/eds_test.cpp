@@ -252,7 +252,7 @@ TEST(EdsUsedObjects, DisagreementsAreNamed) {
       {0x1018, 0, "count", datatype::kUnsigned8, 0, UsedAccess::kRead, UsedInPdo::kTpdo},
       {0x6081, 0, "profile velocity", datatype::kUnsigned32, 0, UsedAccess::kReadWrite},
       {0x60F4, 0, "following error", datatype::kInteger32, 0, UsedAccess::kRead, UsedInPdo::kTpdo,
-       true},
+       "no following-error channel"},
   };
   const auto problems = check_against_eds(used, eds);
   ASSERT_EQ(problems.size(), 4U);
