@@ -20,7 +20,7 @@ class MotionWatch final : public SampleObserver {
   MotionWatch(Bench& bench, double speed_bound_rad_s, double travel_bound_rad)
       : bench_(bench),
         sense_(bench.description().sense),
-        speed_(sense_, 3e-3),
+        speed_(sense_, 5e-3),
         speed_bound_(speed_bound_rad_s),
         travel_bound_(travel_bound_rad) {}
 

@@ -5,12 +5,13 @@
 // config's units, are compared with the travel the output encoder measures × N. A drive in
 // other units than the config says reads a ratio far from 1 (rpm read as counts/s: 60/131072).
 //
-// Bounded whatever the drive's units: each cycle the encoder-measured input speed (over a 3 ms
+// Bounded whatever the drive's units: each cycle the encoder-measured input speed (over a 5 ms
 // window) and travel are watched, and beyond `speed_bound` × the commanded speed or
 // `travel_bound` × the intended travel the bench is stopped at once (request_stop: quick
-// stop, brake safe). The drive is switched off afterwards however the motion ended, and a
-// fault the bound caused is cleared (drive to Switch On Disabled); the brake is never
-// energised. Runs on the bench thread, on a connected, inactive bench.
+// stop, brake safe); 5 ms, not the safety check's 8, to stop sooner. The drive is switched off
+// afterwards however the motion ended, and a fault the bound caused is cleared (drive to Switch On
+// Disabled); the brake is never energised. Runs on the bench thread, on a connected, inactive
+// bench.
 
 #include <string>
 
