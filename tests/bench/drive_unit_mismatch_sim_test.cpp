@@ -1,9 +1,9 @@
 // A drive whose velocity unit differs from the config (issue #20) on the in-process simulated
 // bench: the commissioning check's units row is red when the drive states its unit (0x60A9)
-// and the config says another; the default drive and config stay green; and a run started
-// anyway on a drive in rpm with a config in counts/s (which turns the input far faster than
-// asked and reads 0x606C 2185× too low) trips on the input speed the output encoder measures,
-// within 100 ms of bench time of crossing the limit.
+// and the config says another, and such a bench does not connect; the default drive and config stay
+// green; and a run started anyway on a drive in rpm with a config in counts/s (which turns the
+// input far faster than asked and reads 0x606C 2185× too low) trips on the input speed the output
+// encoder measures, within 100 ms of bench time of crossing the limit.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -79,6 +79,20 @@ TEST(DriveUnitMismatch, DriveStatingTheConfigsUnitsIsGreen) {
   EXPECT_TRUE(row.ok) << row.detail;
   EXPECT_NE(row.detail.find("they agree"), std::string::npos) << row.detail;
   EXPECT_TRUE(report.all_green()) << format_check_table(report);
+}
+
+TEST(DriveUnitMismatch, ADriveStatingOtherUnitsIsNotConnectedSoNoRunStarts) {
+  SimBench sim(drive_in(simdevices::DriveVelocityUnit::kRpm, true));
+  try {
+    sim.bench->connect();
+    ADD_FAILURE() << "connected a drive stating rpm under a config in counts/s";
+  } catch (const std::runtime_error& e) {
+    EXPECT_NE(std::string(e.what()).find("0x60A9 = 0x00B44700 (rev/min)"), std::string::npos)
+        << e.what();
+  }
+  EXPECT_EQ(sim.bench->state(), BenchLifecycle::kUnconfigured);
+  EXPECT_EQ(sim.drive_state(), simdevices::Cia402State::kSwitchOnDisabled);
+  sim.bench->disconnect();
 }
 
 TEST(DriveUnitMismatch, DefaultDriveAndConfigAreGreen) {
