@@ -1,4 +1,6 @@
-// wavebench bench check CONFIG: the commissioning check (no motion; devices left inactive).
+// wavebench bench check CONFIG: the commissioning check (devices left inactive). Nothing moves
+// unless --motion: then a drive that does not state its velocity unit (no 0x60A9) has its
+// units compared with the encoders by a short, slow, bounded motion (issue #20).
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -16,6 +18,7 @@ namespace {
 struct CheckArgs {
   std::string config = "sim";
   bool json = false;
+  bool motion = false;
 };
 
 int run_check(const CheckArgs& a) {
@@ -47,7 +50,9 @@ int run_check(const CheckArgs& a) {
               << "' is not a CANopen bench\n";
     return 1;
   }
-  const auto report = bench::check_bench(*canopen);
+  bench::CheckOptions options;
+  options.motion = a.motion;
+  const auto report = bench::check_bench(*canopen, options);
   bench->disconnect();
   if (a.json) {
     std::cout << bench::check_report_json(report).dump(2) << "\n";
@@ -65,11 +70,16 @@ void register_bench_commands(CLI::App& app, ExitStatus& status) {
   auto args = std::make_shared<CheckArgs>();
   auto* check = bench->add_subcommand(
       "check",
-      "Commissioning check, nothing moves: nodes, identity, device type, used objects (EDS), "
+      "Commissioning check, nothing moves without --motion: nodes, identity, device type, used "
+      "objects (EDS), "
       "PDO mapping, heartbeats, SYNC round trip, bus load, brake registers; exit 0 all green, "
       "1 any red, 2 bad config");
   check->add_option("config", args->config, "'sim' or a bench config file")->capture_default_str();
   check->add_flag("--json", args->json, "rows as JSON instead of a table");
+  check->add_flag("--motion", args->motion,
+                  "where the drive does not state its velocity unit (no 0x60A9), turn the input "
+                  "~0.1 rev at 10 rpm (bounded by the encoders: stopped beyond 30 rpm or 0.2 rev) "
+                  "to compare the drive's units with the encoders; the drive is off again after");
   check->callback([args, &status] {
     try {
       status.code = run_check(*args);

@@ -224,3 +224,26 @@ TEST_F(BenchCheckCli, EdsOfAnotherDeviceGivesARedIdentityRowNamingBoth) {
 }
 
 }  // namespace
+
+// Issue #20: a drive in rpm under a config in counts/s. Stating its unit (0x60A9) it is a red
+// units row by itself; without 0x60A9, --motion finds it by a short bounded motion.
+TEST_F(BenchCheckCli, DriveInRpmUnderACountsConfigIsRedByItsSiUnitOrByMotion) {
+  auto stating = sim_;
+  replace(stating, "  simbench:",
+          "  simbench:\n    drive: {velocity_unit: rpm, si_unit_objects: true}\n   ");
+  auto r = check("rpm-stating.yaml", stating);
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has_red_row(r.output, "servo drive", "the drive says 0x60A9 = 0x00B44700 (rev/min)"))
+      << r.output;
+
+  auto silent = sim_;
+  replace(silent, "  simbench:", "  simbench:\n    drive: {velocity_unit: rpm}\n   ");
+  r = run_wavebench("bench check --motion " + write("rpm-silent.yaml", silent));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has_red_row(r.output, "servo drive", "the drive's velocity unit is likely rpm"))
+      << r.output;
+
+  r = run_wavebench("bench check --motion " + write("sim-motion.yaml", sim_));
+  EXPECT_EQ(r.exit_code, 0) << r.output;
+  EXPECT_NE(r.output.find("the units agree"), std::string::npos) << r.output;
+}

@@ -8,6 +8,8 @@
 #include <set>
 
 #include "wavebench/bench/bench_devices.hpp"
+#include "wavebench/bench/drive_unit_statement.hpp"
+#include "wavebench/bench/units_motion_check.hpp"
 #include "wavebench/canopen/cob_id.hpp"
 #include "wavebench/canopen/nmt.hpp"
 #include "wavebench/canopen/pdo.hpp"
@@ -426,8 +428,39 @@ class Check {
         text += "; 0x608F not readable";
       }
     }
-    text += "; velocities in counts/s, accelerations in counts/s^2";
-    add(device_label(drive), "units", true, text);
+    const auto& d = config_.drive;
+    text += fmt::format(
+        "; drive.position_unit = {}, drive.velocity_unit = {}, "
+        "drive.acceleration_unit = {}",
+        d.position_unit.text, d.velocity_unit.text, d.acceleration_unit.text);
+    bool ok = true;
+    if (answering) {
+      // Issue #20: what the drive states of its units, against the config's.
+      const auto statement = compare_drive_unit_statement(
+          read_drive_unit_statement(bench_.master().sdo(drive.node)), d);
+      ok = statement.agree;
+      text += "; " + statement.detail;
+      if (!statement.stated) ok = units_by_motion(text);
+    }
+    add(device_label(drive), "units", ok, text);
+  }
+
+  // The drive does not state its units: compare them with the encoders by a bounded motion,
+  // when asked and the bench is connected and inactive. False only when the motion shows them
+  // wrong or could not tell.
+  bool units_by_motion(std::string& text) {
+    if (!options_.motion) {
+      text += " (not compared by motion: wavebench bench check --motion does)";
+      return true;
+    }
+    if (bench_.state() != BenchLifecycle::kInactive) {
+      text += fmt::format("; not compared by motion: the bench is {}, not inactive",
+                          lifecycle_name(bench_.state()));
+      return false;
+    }
+    const auto moved = check_units_by_motion(bench_, config_.drive);
+    text += "; " + moved.detail;
+    return moved.ok;
   }
 
   CanopenBench& bench_;

@@ -10,6 +10,7 @@
 
 #include "wavebench/bench/cia402_drive_device.hpp"
 #include "wavebench/bench/drive_factor_group.hpp"
+#include "wavebench/bench/drive_unit_statement.hpp"
 #include "wavebench/canopen/pdo.hpp"
 #include "wavebench/canopen/sdo_abort.hpp"
 
@@ -109,6 +110,12 @@ DriveChannels read_drive_channels(canopen::SdoClient& sdo, const DriveSettings& 
     acceleration = settings.acceleration_unit.units_per_rev(counts);
   c.units = DriveUnits(position, velocity, acceleration);
   c.units_origin = origin;
+  // Issue #20: a drive stating other units (0x60A8/0x60A9) than the config would be commanded
+  // and read in the wrong ones (a run at 2185× the speed, its speed limit blinded): no connect.
+  if (const auto stated = compare_drive_unit_statement(read_drive_unit_statement(sdo), settings);
+      !stated.agree)
+    throw std::runtime_error("drive units: " + stated.detail +
+                             ": set the config's drive units to the drive's (or factor_group)");
 
   std::error_code missing;
   if (!read_optional<std::int32_t>(sdo, 0x60F4, 0, "following error actual value", &missing)) {

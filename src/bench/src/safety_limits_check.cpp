@@ -29,6 +29,12 @@ std::optional<std::string> SafetyLimitsCheck::check(const storage::SyncSample& s
   if (s.valid(storage::kInputSpeedValid) && over(l.max_input_speed_rad_s, s.input_speed_rad_s))
     return crossed("input speed", s.input_speed_rad_s, l.max_input_speed_rad_s, "rpm",
                    60 / (2 * M_PI));
+  if (s.valid(storage::kThetaOutValid)) {
+    const auto speed = encoder_speed_.add(s.receive_time_ns, s.theta_out_rad);
+    if (speed && over(l.max_input_speed_rad_s, *speed))
+      return crossed("input speed measured by the output encoder × ratio", *speed,
+                     l.max_input_speed_rad_s, "rpm", 60 / (2 * M_PI));
+  }
   if (s.valid(storage::kBrakeCurrentValid) && over(l.max_brake_current_a, s.brake_current_a))
     return crossed("brake current", s.brake_current_a, l.max_brake_current_a, "A");
   if (s.valid(storage::kBrakeTorqueValid) && over(l.max_brake_torque_nm, s.brake_torque_nm))

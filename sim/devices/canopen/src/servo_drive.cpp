@@ -230,6 +230,17 @@ void Cia402ServoDrive::add_profile_objects() {
     fraction(0x6092, "feed constant", "feed", f.feed, "driving shaft revolutions",
              f.feed_shaft_revolutions);
   }
+  if (c.si_unit_objects && !factor_group) {
+    // Prefix (byte 3), unit (byte 2: 0xB5 increment, 0xB4 revolution), time (byte 1: 0x03 s,
+    // 0x47 min).
+    const std::uint32_t velocity = c.velocity_unit == DriveVelocityUnit::kRpm       ? 0x00B44700U
+                                   : c.velocity_unit == DriveVelocityUnit::kDeciRpm ? 0xFFB44700U
+                                                                                    : 0x00B50300U;
+    d.add_value<std::uint32_t>(0x60A8, 0, "SI unit position", DT::kUnsigned32, A::kReadOnly,
+                               0x00B50000U);
+    d.add_value<std::uint32_t>(0x60A9, 0, "SI unit velocity", DT::kUnsigned32, A::kReadOnly,
+                               velocity);
+  }
   if (c.has(0x60F4))
     d.add_value<std::int32_t>(0x60F4, 0, "following error actual value", DT::kInteger32,
                               A::kReadOnly, 0, true);

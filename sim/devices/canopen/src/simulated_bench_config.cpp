@@ -47,6 +47,7 @@ void read_drive_units(YamlSection& s, ServoDriveConfig& d) {
                                         : DriveVelocityUnit::kFactorGroup;
   }
   if (auto f = s.optional_section("factor_group")) read_factor_group(*f, d.factor_group);
+  if (const auto si = s.optional_boolean("si_unit_objects")) d.si_unit_objects = *si;
   if (const auto objects = s.optional_text_list("absent_objects")) {
     d.absent_objects.clear();
     for (std::size_t i = 0; i < objects->size(); ++i) {

@@ -39,7 +39,8 @@ struct DriveChannels {
 // Reads the factor group and SI unit objects where a unit is factor_group, the rated torque
 // 0x6076 where the torque scale is per mille of it, and probes 0x60F4 and 0x6077. Throws
 // std::runtime_error naming the object and what was wrong (a bad factor, a transfer failing
-// for another reason than a missing object).
+// for another reason than a missing object), and naming both units when the drive's SI unit
+// objects 0x60A8/0x60A9 state other units than the config's (drive_unit_statement.hpp).
 DriveChannels read_drive_channels(canopen::SdoClient& sdo, const DriveSettings& settings);
 
 // TPDO2: {0x606C, 0x60F4}, or {0x606C} where 0x60F4 is absent. A drive that refuses 0x60F4 in

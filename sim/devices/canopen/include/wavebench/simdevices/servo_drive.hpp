@@ -79,6 +79,10 @@ struct ServoDriveConfig {
   bool following_error_is_fault = true;           // error 0x8611 when the window is exceeded
   DriveVelocityUnit velocity_unit = DriveVelocityUnit::kCounts;
   DriveFactorGroupConfig factor_group;  // with kFactorGroup
+  // SI unit objects 0x60A8 (position: increments) and 0x60A9 (velocity: increments/s, rev/min
+  // or 0.1 rev/min as velocity_unit), a drive that states its units (issue #20). Off by default:
+  // the shipped EDS has neither. Not with kFactorGroup (its user units have no SI name here).
+  bool si_unit_objects = false;
   // Optional objects this drive model lacks (0x60F4, 0x6077, 0x603F): SDO access and PDO mapping
   // answer 06020000.
   std::vector<std::uint16_t> absent_objects;

@@ -11,6 +11,7 @@
 //               quick_stop_option: 6, following_error_window: 65536,
 //               following_error_timeout_ms: 50, serial_number: 4097,
 //               velocity_unit: counts/s,        # counts/s | rpm | "0.1 rpm" | factor_group
+//               si_unit_objects: false,         # true: 0x60A8/0x60A9 state the units
 //               factor_group: {position_encoder_resolution: [131072, 1],   # 0x608F
 //                              velocity_encoder_resolution: [131072, 1],   # 0x6090
 //                              gear_ratio: [1, 1],                         # 0x6091
