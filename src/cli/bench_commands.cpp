@@ -1,6 +1,7 @@
-// wavebench bench check CONFIG: the commissioning check (devices left inactive). Nothing moves
-// unless --motion: then a drive that does not state its velocity unit (no 0x60A9) has its
-// units compared with the encoders by a short, slow, bounded motion (issue #20).
+// wavebench bench check CONFIG: the commissioning check (devices left inactive). A drive that
+// does not state its velocity unit (no 0x60A9) has its units compared with the encoders by a
+// short, slow, bounded motion (issue #20): a unit mismatch is found before a run could turn
+// the input 60x too fast. --no-motion keeps everything still (that row then says so).
 #include <spdlog/sinks/stdout_color_sinks.h>
 #include <spdlog/spdlog.h>
 
@@ -18,7 +19,7 @@ namespace {
 struct CheckArgs {
   std::string config = "sim";
   bool json = false;
-  bool motion = false;
+  bool motion = true;
 };
 
 int run_check(const CheckArgs& a) {
@@ -70,16 +71,17 @@ void register_bench_commands(CLI::App& app, ExitStatus& status) {
   auto args = std::make_shared<CheckArgs>();
   auto* check = bench->add_subcommand(
       "check",
-      "Commissioning check, nothing moves without --motion: nodes, identity, device type, used "
-      "objects (EDS), "
-      "PDO mapping, heartbeats, SYNC round trip, bus load, brake registers; exit 0 all green, "
-      "1 any red, 2 bad config");
+      "Commissioning check: nodes, identity, device type, used objects (EDS), PDO mapping, "
+      "heartbeats or node guarding, SYNC round trip, bus load, brake registers, drive units "
+      "(0x60A8/0x60A9, else a short bounded motion unless --no-motion); exit 0 all green, 1 any "
+      "red, 2 bad config");
   check->add_option("config", args->config, "'sim' or a bench config file")->capture_default_str();
   check->add_flag("--json", args->json, "rows as JSON instead of a table");
-  check->add_flag("--motion", args->motion,
-                  "where the drive does not state its velocity unit (no 0x60A9), turn the input "
-                  "~0.1 rev at 10 rpm (bounded by the encoders: stopped beyond 30 rpm or 0.2 rev) "
-                  "to compare the drive's units with the encoders; the drive is off again after");
+  check->add_flag("--motion,!--no-motion", args->motion,
+                  "(default) where the drive does not state its velocity unit (no 0x60A9), turn "
+                  "the input ~0.1 rev at 10 rpm (bounded by the encoders: stopped beyond 30 rpm "
+                  "or 0.2 rev) to compare the drive's units with the encoders; the drive is off "
+                  "again after. --no-motion: nothing moves");
   check->callback([args, &status] {
     try {
       status.code = run_check(*args);

@@ -223,8 +223,6 @@ TEST_F(BenchCheckCli, EdsOfAnotherDeviceGivesARedIdentityRowNamingBoth) {
       << r.output;
 }
 
-}  // namespace
-
 // Issue #20: a drive in rpm under a config in counts/s. Stating its unit (0x60A9) it is a red
 // units row by itself; without 0x60A9, --motion finds it by a short bounded motion.
 TEST_F(BenchCheckCli, DriveInRpmUnderACountsConfigIsRedByItsSiUnitOrByMotion) {
@@ -242,8 +240,17 @@ TEST_F(BenchCheckCli, DriveInRpmUnderACountsConfigIsRedByItsSiUnitOrByMotion) {
   EXPECT_EQ(r.exit_code, 1) << r.output;
   EXPECT_TRUE(has_red_row(r.output, "servo drive", "the drive's velocity unit is likely rpm"))
       << r.output;
+  // The motion is the check's default; --no-motion keeps the bench still and says so.
+  r = run_wavebench("bench check " + write("rpm-default.yaml", silent));
+  EXPECT_EQ(r.exit_code, 1) << r.output;
+  EXPECT_TRUE(has_red_row(r.output, "servo drive", "the drive's velocity unit is likely rpm"))
+      << r.output;
+  r = run_wavebench("bench check --no-motion " + write("rpm-still.yaml", silent));
+  EXPECT_NE(r.output.find("not compared by motion"), std::string::npos) << r.output;
 
   r = run_wavebench("bench check --motion " + write("sim-motion.yaml", sim_));
   EXPECT_EQ(r.exit_code, 0) << r.output;
   EXPECT_NE(r.output.find("the units agree"), std::string::npos) << r.output;
 }
+
+}  // namespace

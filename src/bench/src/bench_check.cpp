@@ -450,7 +450,7 @@ class Check {
   // wrong or could not tell.
   bool units_by_motion(std::string& text) {
     if (!options_.motion) {
-      text += " (not compared by motion: wavebench bench check --motion does)";
+      text += " (not compared by motion: wavebench bench check without --no-motion does)";
       return true;
     }
     if (bench_.state() != BenchLifecycle::kInactive) {
