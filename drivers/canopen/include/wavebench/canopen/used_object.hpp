@@ -26,10 +26,15 @@ struct UsedObject {
   UsedAccess access = UsedAccess::kRead;
   UsedInPdo pdo = UsedInPdo::kNone;
   bool optional = false;  // the client copes without it (an absent channel, a skipped write)
+  // A PDO communication or mapping parameter the bench writes, but reads back and uses as found
+  // where the device has it read-only (pdo_adoption.hpp): `ro` / `const` in the EDS is no
+  // problem for it.
+  bool may_be_read_only = false;
 };
 
 // The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
 // heartbeat, identity, TPDO1 with one mapped object), written once for every device's list.
+// The TPDO parameters may be read-only: the bench then uses the mapping it reads back.
 inline constexpr std::size_t kNodeObjectCount = 11;
 constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   using enum UsedAccess;
@@ -43,10 +48,11 @@ constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
       {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
       {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},
       {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead},
-      {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
-      {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
-      {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
-      {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+      {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite, kNone, false, true},
+      {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite, kNone, false, true},
+      {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite, kNone, false,
+       true},
+      {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite, kNone, false, true},
   }};
 }
 
