@@ -198,9 +198,12 @@ class Check {
                              ? "read"
                              : "read (written by the bench; not written here)";
     if (d.expect->eds) {
-      if (const auto* o = d.expect->eds->find(u.index, u.sub))
+      if (const auto* o = d.expect->eds->find(u.index, u.sub)) {
         access += fmt::format(", EDS {}{}", canopen::to_string(o->access),
                               o->pdo_mapping ? ", PDO-mappable" : "");
+        if (u.may_be_read_only && !canopen::writable(o->access))
+          access += " (may be read-only: the mapping is read back and used as found)";
+      }
     }
     add(label, item, true, fmt::format("{}, {} bytes {}", type, bytes.size(), access));
   }

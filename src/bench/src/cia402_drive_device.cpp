@@ -65,7 +65,14 @@ void Cia402DriveDevice::configure(canopen::SdoClient& sdo) {
                                 "fixed TPDOs (" +
                                     adopted_.summary() + ")"});
   }
-  canopen::configure_pdo(sdo, PdoDirection::receive, kQuickStopRpdo, quick_stop_rpdo(node()));
+  try {
+    canopen::configure_pdo(sdo, PdoDirection::receive, kQuickStopRpdo, quick_stop_rpdo(node()));
+  } catch (const std::system_error& e) {
+    // Not adopted as found: the quick stop's frame is the bench's own (quick_stop_watch.hpp).
+    throw std::runtime_error(std::string(e.what()) + ": the quick stop needs RPDO" +
+                             std::to_string(kQuickStopRpdo) +
+                             " mapped with the controlword 0x6040 alone; a fixed RPDO is not used");
+  }
   // 0x6007 is optional (CiA 402): where present, an NMT stop (the quick stop's fallback)
   // disables the drive's voltage.
   std::error_code ec;
