@@ -292,9 +292,11 @@ DefaultValue=0x60640020
   EXPECT_NE(problems[0].find("0x1800:1 TPDO1 COB-ID: EDS AccessType ro"), std::string::npos)
       << problems[0];
   // The drive's TPDO2 parameters are flagged as well.
-  for (const auto& u : Cia402Drive::used_objects())
-    if ((u.index & 0xFF00) == 0x1800 || (u.index & 0xFF00) == 0x1A00)
+  for (const auto& u : Cia402Drive::used_objects()) {
+    if ((u.index & 0xFF00) == 0x1800 || (u.index & 0xFF00) == 0x1A00) {
       EXPECT_TRUE(u.may_be_read_only) << describe(u);
+    }
+  }
 }
 
 }  // namespace
