@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <string>
 
@@ -96,6 +97,20 @@ TEST(FixedPdoMapping, CheckIsGreenSayingUsedAsFound) {
   EXPECT_EQ(sim.observer.samples.back().flags & storage::kAllChannelsValid,
             storage::kAllChannelsValid);
   EXPECT_TRUE(canopen->latest_drive().status_valid);
+  sim.bench->disconnect();
+}
+
+TEST(FixedPdoMapping, ShippedExampleConfigChecksGreen) {
+  testing::SimBench sim(load_bench_config(std::filesystem::path(WAVEBENCH_SOURCE_DIR) / "configs" /
+                                          "benches" / "sim-fixed-pdo-drive.yaml"));
+  const auto report = check_bench(*canopen_bench_of(*sim.bench));
+  const auto table = format_check_table(report);
+  EXPECT_TRUE(report.all_green()) << table;
+  const auto* drive = row(report, "servo drive", "PDO mapping");
+  ASSERT_NE(drive, nullptr) << table;
+  EXPECT_EQ(
+      drive->detail.rfind("fixed mapping, used as found: TPDO1 [0x6064:0/32, 0x6041:0/16]", 0), 0U)
+      << drive->detail;
   sim.bench->disconnect();
 }
 

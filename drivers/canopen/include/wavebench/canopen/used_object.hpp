@@ -70,7 +70,8 @@ constexpr std::array<UsedObject, kNodeObjectCount + N> with_node_objects(
 std::string describe(const UsedObject& object);  // "0x6041:0 statusword"
 
 // What `eds` says against each used object: a missing required object, another data type, an
-// access that does not allow the use, not PDO-mappable where it goes in a PDO. Empty: agreed.
+// access that does not allow the use (but `ro`/`const` on one marked may_be_read_only), not
+// PDO-mappable where it goes in a PDO. Empty: agreed.
 // An optional object missing from the EDS is not a problem.
 std::vector<std::string> check_against_eds(std::span<const UsedObject> used, const Eds& eds);
 
