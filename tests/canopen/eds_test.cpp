@@ -268,3 +268,75 @@ TEST(EdsUsedObjects, DisagreementsAreNamed) {
 
 }  // namespace
 }  // namespace wavebench::canopen
+
+namespace wavebench::canopen {
+namespace {
+
+// A device whose TPDO parameters are read-only (a Faulhaber EDS declares them so, issue 20):
+// the bench reads the mapping back and uses it as found, so `ro` / `const` on the objects it
+// would write is no problem for them; on any other object it stays one.
+TEST(EdsUsedObjects, ReadOnlyTpdoParametersAreAcceptedWhereTheBenchReadsThemBack) {
+  const auto eds = Eds::parse(R"([1800]
+ParameterName=TPDO1 communication
+ObjectType=0x9
+SubNumber=3
+
+[1800sub0]
+ParameterName=Highest sub-index
+DataType=0x0005
+AccessType=const
+DefaultValue=2
+
+[1800sub1]
+ParameterName=COB-ID
+DataType=0x0007
+AccessType=ro
+DefaultValue=$NODEID+0x180
+
+[1800sub2]
+ParameterName=Transmission type
+DataType=0x0005
+AccessType=const
+DefaultValue=1
+
+[1A00]
+ParameterName=TPDO1 mapping
+ObjectType=0x9
+SubNumber=2
+
+[1A00sub0]
+ParameterName=Number of mapped objects
+DataType=0x0005
+AccessType=ro
+DefaultValue=1
+
+[1A00sub1]
+ParameterName=Mapped object 1
+DataType=0x0007
+AccessType=ro
+DefaultValue=0x60640020
+)",
+                              "fixed.eds");
+  const auto node = node_objects();
+  std::vector<UsedObject> tpdo;
+  for (const auto& u : node)
+    if (u.index == 0x1800 || u.index == 0x1A00) tpdo.push_back(u);
+  ASSERT_EQ(tpdo.size(), 4U);
+  for (const auto& u : tpdo) EXPECT_TRUE(u.may_be_read_only) << describe(u);
+  EXPECT_TRUE(check_against_eds(tpdo, eds).empty());
+  // Without the flag the same EDS is a problem (an object the bench must write).
+  tpdo[0].may_be_read_only = false;
+  const auto problems = check_against_eds(tpdo, eds);
+  ASSERT_EQ(problems.size(), 1U);
+  EXPECT_NE(problems[0].find("0x1800:1 TPDO1 COB-ID: EDS AccessType ro"), std::string::npos)
+      << problems[0];
+  // The drive's TPDO2 parameters are flagged as well.
+  for (const auto& u : Cia402Drive::used_objects()) {
+    if ((u.index & 0xFF00) == 0x1800 || (u.index & 0xFF00) == 0x1A00) {
+      EXPECT_TRUE(u.may_be_read_only) << describe(u);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace wavebench::canopen

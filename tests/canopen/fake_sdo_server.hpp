@@ -43,6 +43,8 @@ class FakeSdoServer {
   }
   // Called after a successful download; may change other objects.
   std::function<void(std::uint16_t, std::uint8_t, const Bytes&)> on_write;
+  // Called before each download; a non-zero SDO abort code refuses it (a read-only object).
+  std::function<std::uint32_t(std::uint16_t, std::uint8_t)> refuse_write;
   // Called before each upload (to let a simulated device advance).
   std::function<void(std::uint16_t, std::uint8_t)> on_read;
   std::vector<std::pair<std::uint32_t, Bytes>> writes;  // every download, in order
@@ -113,6 +115,10 @@ class FakeSdoServer {
       auto it = objects_.find(key(index, sub));
       if (it == objects_.end()) return abort(index, sub, 0x06020000);
       if (it->second.size() != n) return abort(index, sub, 0x06070010);
+      if (refuse_write) {
+        if (const std::uint32_t code = refuse_write(index, sub); code != 0)
+          return abort(index, sub, code);
+      }
       it->second = b;
       writes.emplace_back(key(index, sub), b);
       reply({0x60}, index, sub);

@@ -65,14 +65,15 @@ namespace dt = datatype;
 
 // SDO: the state machine, modes, profile moves and velocity; TPDO1 statusword and position,
 // TPDO2 velocity and following error (the bench's drive device); the controlword is RPDO-mappable
-// for the quick stop.
+// for the quick stop. The TPDO parameters may be read-only (a fixed mapping, used as found).
 constexpr auto kDriveObjects = with_node_objects(std::to_array<UsedObject>({
-    {0x1A00, 2, "TPDO1 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
-    {0x1801, 1, "TPDO2 COB-ID", dt::kUnsigned32, 0, kReadWrite},
-    {0x1801, 2, "TPDO2 transmission type", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A01, 0, "TPDO2 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
-    {0x1A01, 1, "TPDO2 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
-    {0x1A01, 2, "TPDO2 mapped object 2", dt::kUnsigned32, 0, kReadWrite},
+    {0x1A00, 2, "TPDO1 mapped object 2", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
+    {0x1801, 1, "TPDO2 COB-ID", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
+    {0x1801, 2, "TPDO2 transmission type", dt::kUnsigned8, 0, kReadWrite, kNone, nullptr, true},
+    {0x1A01, 0, "TPDO2 number of mapped objects", dt::kUnsigned8, 0, kReadWrite, kNone, nullptr,
+     true},
+    {0x1A01, 1, "TPDO2 mapped object 1", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
+    {0x1A01, 2, "TPDO2 mapped object 2", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
     {0x603F, 0, "error code", dt::kUnsigned16, 0, kRead, kNone,
      "a fault is reported by its statusword and EMCY, without 0x603F"},
     {0x6040, 0, "controlword", dt::kUnsigned16, 0, kReadWrite, kRpdo},

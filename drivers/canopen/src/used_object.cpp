@@ -28,7 +28,9 @@ std::vector<std::string> check_against_eds(std::span<const UsedObject> used, con
     }
     const bool need_read = u.access != UsedAccess::kWrite || u.pdo == UsedInPdo::kTpdo;
     const bool need_write = u.access != UsedAccess::kRead || u.pdo == UsedInPdo::kRpdo;
-    if ((need_read && !readable(o->access)) || (need_write && !writable(o->access))) {
+    // A PDO parameter the bench cannot write is read back and used as found.
+    const bool write_refused = need_write && !writable(o->access) && !u.may_be_read_only;
+    if ((need_read && !readable(o->access)) || write_refused) {
       problems.push_back(fmt::format("{}: EDS AccessType {}, the bench {}", describe(u),
                                      to_string(o->access),
                                      need_read && need_write ? "reads and writes it"

@@ -254,9 +254,12 @@ class Check {
                              ? "read"
                              : "read (written by the bench; not written here)";
     if (d.expect->eds) {
-      if (const auto* o = d.expect->eds->find(u.index, u.sub))
+      if (const auto* o = d.expect->eds->find(u.index, u.sub)) {
         access += fmt::format(", EDS {}{}", canopen::to_string(o->access),
                               o->pdo_mapping ? ", PDO-mappable" : "");
+        if (u.may_be_read_only && !canopen::writable(o->access))
+          access += " (may be read-only: the mapping is read back and used as found)";
+      }
     }
     add(label, item, true, fmt::format("{}, {} bytes {}", type, bytes.size(), access));
   }
@@ -313,9 +316,14 @@ class Check {
     auto& sdo = bench_.master().sdo(d.node);
     std::string seen;
     std::string wrong;
-    unsigned number = 0;
-    for (const auto& pdo : d.tpdos) {
-      ++number;
+    // The connected bench's device knows its TPDOs as used: as found where they are fixed.
+    const auto* used = connected_device(d.node);
+    const auto tpdos = used ? used->tpdos() : d.tpdos;
+    const auto fixed = used ? used->adopted_tpdos().summary() : std::string();
+    const auto adopted = used ? used->adopted_tpdos().pdos() : std::vector<canopen::PdoAdoption>{};
+    for (std::size_t i = 0; i < tpdos.size(); ++i) {
+      const auto& pdo = tpdos[i];
+      const unsigned number = i < adopted.size() ? adopted[i].number : static_cast<unsigned>(i + 1);
       const auto map = static_cast<std::uint16_t>(0x1A00 + number - 1);
       std::error_code ec;
       const auto count = sdo.read<std::uint8_t>(map, 0, ec);
@@ -336,7 +344,17 @@ class Check {
       if (!same)
         wrong += fmt::format("TPDO{} reads back [{}], not the bench's mapping; ", number, entries);
     }
-    add(label, "PDO mapping", wrong.empty(), wrong.empty() ? seen + " (read back)" : wrong);
+    add(label, "PDO mapping", wrong.empty(),
+        wrong.empty() ? (fixed.empty() ? seen : fixed) + " (read back)" : wrong);
+  }
+
+  // The bench's own (configured) device on `node`; null when it has none there.
+  const CanopenDevice* connected_device(std::uint8_t node) const {
+    for (const auto* device : bench_.devices()) {
+      const auto* c = dynamic_cast<const CanopenDevice*>(device);
+      if (c && c->node() == node) return c;
+    }
+    return nullptr;
   }
 
   void observe(const std::vector<BenchCanopenDevice>& devices) {
@@ -379,14 +397,22 @@ class Check {
     const auto incomplete = after.incomplete_samples - before.incomplete_samples;
     std::string missing;
     struct Expected {
-      const char* name;
+      std::string name;
       std::uint32_t cob;
     };
-    const Expected expected[] = {
-        {"servo drive TPDO1", canopen::tpdo_cob_id(1, config_.can.drive_node)},
-        {"servo drive TPDO2", canopen::tpdo_cob_id(2, config_.can.drive_node)},
-        {"output encoder TPDO1", canopen::tpdo_cob_id(1, config_.can.encoder_node)},
-        {"torque sensor TPDO1", canopen::tpdo_cob_id(1, config_.can.torque_node)}};
+    // Each TPDO as the devices use it (a fixed mapping may have other PDOs or COB-IDs).
+    std::vector<Expected> expected;
+    for (const auto& d : devices) {
+      const auto* used = connected_device(d.node);
+      if (!used) continue;
+      const auto& adopted = used->adopted_tpdos().pdos();
+      const auto configs = used->tpdos();
+      for (std::size_t i = 0; i < configs.size(); ++i) {
+        expected.push_back(
+            {fmt::format("{} TPDO{}", d.name, i < adopted.size() ? adopted[i].number : i + 1),
+             configs[i].cob_id & can::kStandardIdMask});
+      }
+    }
     for (const auto& e : expected) {
       if (tpdos[e.cob] == 0)
         missing += fmt::format("{}{} (0x{:03X})", missing.empty() ? "" : ", ", e.name, e.cob);

@@ -10,6 +10,8 @@
 namespace wavebench::bench {
 namespace {
 
+const canopen::NeededObject kNeeded[] = {{0x6004, 0, 32, "position value"}};
+
 class Cia406EncoderDevice final : public CanopenDevice {
  public:
   Cia406EncoderDevice(std::string name, const ChannelDeviceSettings& s)
@@ -29,18 +31,22 @@ class Cia406EncoderDevice final : public CanopenDevice {
     auto encoder = std::make_unique<canopen::Cia406Encoder>(
         sdo, canopen::Cia406Config{settings_.counts_per_turn, settings_.turns});
     encoder->read_configuration();
-    canopen::configure_pdo(sdo, canopen::PdoDirection::transmit, 1, tpdos().front());
+    adopted_ = {};
+    adopt_tpdos(sdo, {bench_tpdo()}, kNeeded);
     encoder_ = std::move(encoder);
   }
 
   std::vector<canopen::PdoConfig> tpdos() const override {
-    return {{canopen::tpdo_cob_id(1, node()), 1, 0, {{0x6004, 0, 32}}}};
+    if (!adopted_.pdos().empty()) return adopted_.configs();
+    return {bench_tpdo()};
   }
 
   bool on_pdo(std::size_t i, const can::Frame& frame, CycleRecord& record) noexcept override {
-    if (i != 0 || !encoder_ || frame.len < 4) return false;
-    const std::uint32_t raw = frame.data[0] | frame.data[1] << 8 | frame.data[2] << 16 |
-                              static_cast<std::uint32_t>(frame.data[3]) << 24;
+    if (!encoder_) return false;
+    // 0x6004 wherever the device maps it (a fixed mapping may put it at a bit offset).
+    const auto position = adopted_.raw(0, i, frame);
+    if (!position) return false;
+    const auto raw = static_cast<std::uint32_t>(*position);
     const double angle = encoder_->on_position(raw) +
                          std::numbers::pi / static_cast<double>(encoder_->counts_per_turn());
     put(record, 0, settings_.sign * angle);
@@ -48,6 +54,10 @@ class Cia406EncoderDevice final : public CanopenDevice {
   }
 
  private:
+  canopen::PdoConfig bench_tpdo() const {
+    return {canopen::tpdo_cob_id(1, node()), 1, 0, {{0x6004, 0, 32}}};
+  }
+
   ChannelDeviceSettings settings_;
   std::unique_ptr<canopen::Cia406Encoder> encoder_;
 };

@@ -10,7 +10,7 @@ class TorqueSensorDevice final : public CanopenDevice {
   TorqueSensorDevice(std::string name, const ChannelDeviceSettings& s)
       : CanopenDevice(std::move(name), s.node),
         settings_(s),
-        layout_({canopen::PdoEntry::decode(mapping_entry(s.torque))}) {}
+        entry_(canopen::PdoEntry::decode(mapping_entry(s.torque))) {}
 
   std::vector<storage::ChannelInfo> channels() const override {
     return {{settings_.channel, "N*m"}};
@@ -21,16 +21,22 @@ class TorqueSensorDevice final : public CanopenDevice {
 
   void configure(canopen::SdoClient& sdo) override {
     sensor_ = std::make_unique<canopen::TorqueSensor>(sdo, settings_.torque);
-    canopen::configure_pdo(sdo, canopen::PdoDirection::transmit, 1, tpdos().front());
+    adopted_ = {};
+    const canopen::NeededObject needed[] = {{entry_.index, entry_.sub, entry_.bits, "torque"}};
+    adopt_tpdos(sdo, {bench_tpdo()}, needed);
   }
 
   std::vector<canopen::PdoConfig> tpdos() const override {
-    return {{canopen::tpdo_cob_id(1, node()), 1, 0, layout_.entries()}};
+    if (!adopted_.pdos().empty()) return adopted_.configs();
+    return {bench_tpdo()};
   }
 
   bool on_pdo(std::size_t i, const can::Frame& frame, CycleRecord& record) noexcept override {
-    if (i != 0 || !sensor_ || !layout_.fits(frame)) return false;
-    put(record, 0, settings_.sign * sensor_->torque_from_raw(layout_.raw(frame, 0)));
+    if (!sensor_) return false;
+    // The torque object wherever the device maps it (a fixed mapping: as found).
+    const auto raw = adopted_.raw(0, i, frame);
+    if (!raw) return false;
+    put(record, 0, settings_.sign * sensor_->torque_from_raw(*raw));
     return true;
   }
 
@@ -40,8 +46,12 @@ class TorqueSensorDevice final : public CanopenDevice {
            static_cast<std::uint32_t>(canopen::size_of(c.type) * 8);
   }
 
+  canopen::PdoConfig bench_tpdo() const {
+    return {canopen::tpdo_cob_id(1, node()), 1, 0, {entry_}};
+  }
+
   ChannelDeviceSettings settings_;
-  canopen::PdoLayout layout_;
+  canopen::PdoEntry entry_;
   std::unique_ptr<canopen::TorqueSensor> sensor_;
 };
 

@@ -145,21 +145,28 @@ DriveChannels read_drive_channels(canopen::SdoClient& sdo, const DriveSettings& 
   return c;
 }
 
-void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels) {
+canopen::PdoAdoption map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels) {
   using canopen::PdoDirection;
+  const auto wanted = Cia402DriveDevice::velocity_pdo(sdo.node(), channels.following_error);
   std::error_code ec;
-  canopen::configure_pdo(sdo, PdoDirection::transmit, 2,
-                         Cia402DriveDevice::velocity_pdo(sdo.node(), channels.following_error), ec);
-  if (ec && channels.following_error &&
+  canopen::configure_pdo(sdo, PdoDirection::transmit, 2, wanted, ec);
+  if (!ec) return {PdoDirection::transmit, 2, wanted, false, {}};
+  if (channels.following_error &&
       (object_missing(ec) || ec == make_error_code(SdoAbort::not_mappable))) {
-    channels.following_error = false;
-    channels.absent.push_back(
-        {kFollowingErrorChannel,
-         abort_reason(0x60F4, "following error actual value", ec) + " when mapped into TPDO2"});
-    canopen::configure_pdo(sdo, PdoDirection::transmit, 2,
-                           Cia402DriveDevice::velocity_pdo(sdo.node(), false), ec);
+    // Refused for 0x60F4, perhaps not for the mapping as such: TPDO2 without it.
+    auto without = canopen::configure_or_read_back(
+        sdo, PdoDirection::transmit, 2, Cia402DriveDevice::velocity_pdo(sdo.node(), false));
+    if (!without.fixed) {
+      channels.following_error = false;
+      channels.absent.push_back(
+          {kFollowingErrorChannel,
+           abort_reason(0x60F4, "following error actual value", ec) + " when mapped into TPDO2"});
+    }
+    return without;
   }
-  if (ec) throw std::system_error(ec, "TPDO2 of node " + std::to_string(sdo.node()));
+  if (!canopen::is_fixed_mapping_refusal(ec))
+    throw std::system_error(ec, "TPDO2 of node " + std::to_string(sdo.node()));
+  return canopen::read_back_refused(sdo, PdoDirection::transmit, 2, ec);
 }
 
 void log_drive_channels(const std::string& bench_name, const DriveChannels& channels) {

@@ -1,5 +1,6 @@
 #include "wavebench/simdevices/canopen_node.hpp"
 
+#include <cstdio>
 #include <stdexcept>
 
 #include "wavebench/simdevices/sdo_abort.hpp"
@@ -199,6 +200,36 @@ void CanopenNode::set_default_rpdo(int number, std::vector<PdoMappingEntry> entr
     od_.set_default<std::uint32_t>(map, static_cast<std::uint8_t>(k + 1), entries[k].encoded());
   }
   od_.set_default<std::uint8_t>(map, 0, static_cast<std::uint8_t>(entries.size()));
+}
+
+void CanopenNode::fix_tpdo(const FixedTpdo& fixed) {
+  const int number = fixed.number;
+  if (number < 1 || number > 4) {
+    throw std::invalid_argument("fixed TPDO" + std::to_string(number) + ": expected TPDO1..4");
+  }
+  unsigned bits = 0;
+  for (const auto& e : fixed.mapping) {
+    if (od_.find(e.index, e.sub) == nullptr) {
+      char object[16];
+      std::snprintf(object, sizeof object, "0x%04X:%u", e.index, static_cast<unsigned>(e.sub));
+      throw std::invalid_argument("fixed TPDO" + std::to_string(number) + ": object " + object +
+                                  " is not in the node's dictionary");
+    }
+    bits += e.bits;
+  }
+  if (fixed.mapping.size() > kMaxMappedEntries || bits > kMaxPdoBits) {
+    throw std::invalid_argument("fixed TPDO" + std::to_string(number) +
+                                ": expected at most 8 entries and 64 bits");
+  }
+  const std::uint16_t comm = comm_index(true, number);
+  const std::uint16_t map = map_index(true, number);
+  for (std::uint8_t sub = 1; sub <= kMaxMappedEntries; ++sub)
+    od_.set_default<std::uint32_t>(map, sub, 0);
+  set_default_tpdo(number, fixed.mapping, !fixed.mapping.empty(), 1);
+  for (const int sub : {1, 2, 3, 5})
+    od_.find(comm, static_cast<std::uint8_t>(sub))->access = Access::kReadOnly;
+  for (std::uint8_t sub = 0; sub <= kMaxMappedEntries; ++sub)
+    od_.find(map, sub)->access = Access::kReadOnly;
 }
 
 std::uint32_t CanopenNode::sync_cob_id() const {

@@ -55,6 +55,7 @@ Cia406Encoder::Cia406Encoder(const EncoderConfig& config, FrameSink sink)
   d.add_value<std::uint16_t>(0x6505, 0, "warnings", DT::kUnsigned16, A::kReadOnly, 0, true);
   d.add_value<std::uint16_t>(0x6506, 0, "supported warnings", DT::kUnsigned16, A::kReadOnly, 0);
   set_default_tpdo(1, {{0x6004, 0, 32}}, true, 1);
+  for (const auto& fixed : config.fixed_tpdos) fix_tpdo(fixed);
   observe(0);
 }
 

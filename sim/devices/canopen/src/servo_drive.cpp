@@ -126,6 +126,7 @@ Cia402ServoDrive::Cia402ServoDrive(const ServoDriveConfig& config, FrameSink sin
   set_default_rpdo(1, {{0x6040, 0, 16}}, true, 255);
   set_default_rpdo(2, {{0x6040, 0, 16}, {0x607A, 0, 32}}, false, 1);
   set_default_rpdo(3, {{0x6040, 0, 16}, {0x60FF, 0, 32}}, false, 1);
+  for (const auto& fixed : config_.fixed_tpdos) fix_tpdo(fixed);
   on_reset_application();
 }
 

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 #include <utility>
 
@@ -26,6 +27,54 @@ void read_fraction(YamlSection& s, const char* key, std::uint32_t& numerator,
   }
   numerator = static_cast<std::uint32_t>((*v)[0]);
   denominator = static_cast<std::uint32_t>((*v)[1]);
+}
+
+// "0x6064:0/32": index, sub-index, length in bits; whole bytes, as the simulated node sends them.
+std::optional<PdoMappingEntry> parse_mapping_entry(const std::string& text) {
+  try {
+    std::size_t used = 0;
+    const unsigned long index = std::stoul(text, &used, 0);
+    if (used >= text.size() || text[used] != ':') return std::nullopt;
+    std::size_t rest = used + 1;
+    const unsigned long sub = std::stoul(text.substr(rest), &used, 0);
+    rest += used;
+    if (rest >= text.size() || text[rest] != '/') return std::nullopt;
+    const unsigned long bits = std::stoul(text.substr(rest + 1), &used, 10);
+    if (rest + 1 + used != text.size()) return std::nullopt;
+    if (index == 0 || index > 0xFFFF || sub > 0xFF || bits == 0 || bits > 64 || bits % 8 != 0)
+      return std::nullopt;
+    return PdoMappingEntry{static_cast<std::uint16_t>(index), static_cast<std::uint8_t>(sub),
+                           static_cast<std::uint8_t>(bits)};
+  } catch (const std::logic_error&) {
+    return std::nullopt;
+  }
+}
+
+// fixed_tpdo_mapping: {tpdo1: ["0x6064:0/32", "0x6041:0/16"], tpdo2: ["0x606C:0/32"]}
+void read_fixed_tpdos(YamlSection& s, std::vector<FixedTpdo>& out) {
+  auto f = s.optional_section("fixed_tpdo_mapping");
+  if (!f) return;
+  out.clear();
+  for (int n = 1; n <= 4; ++n) {
+    const std::string key = "tpdo" + std::to_string(n);
+    const auto list = f->optional_text_list(key);
+    if (!list) continue;
+    FixedTpdo fixed{n, {}};
+    unsigned bits = 0;
+    for (std::size_t i = 0; i < list->size(); ++i) {
+      const auto entry = parse_mapping_entry((*list)[i]);
+      if (!entry) {
+        f->fail(key + "[" + std::to_string(i) + "]", (*list)[i],
+                "INDEX:SUB/BITS like \"0x6064:0/32\", BITS a multiple of 8 up to 64");
+      }
+      bits += entry->bits;
+      fixed.mapping.push_back(*entry);
+    }
+    if (list->size() > 8 || bits > 64)
+      f->fail(key, f->value_text(key), "at most 8 objects of together at most 64 bits");
+    out.push_back(std::move(fixed));
+  }
+  f->finish();
 }
 
 void read_factor_group(YamlSection& s, DriveFactorGroupConfig& f) {
@@ -73,6 +122,7 @@ void read_drive_units(YamlSection& s, ServoDriveConfig& d) {
 
 void read_drive(YamlSection& s, ServoDriveConfig& d) {
   read_drive_units(s, d);
+  read_fixed_tpdos(s, d.fixed_tpdos);
   set_if(s.optional_integer("node_id", 1, 127), d.node_id);
   set_if(s.optional_integer("counts_per_revolution", 4, 1LL << 30), d.counts_per_revolution);
   set_if(s.optional_number("rated_torque_nm", 1e-3, 1e4), d.rated_torque_nm);
@@ -100,6 +150,7 @@ void read_encoder(YamlSection& s, EncoderConfig& e) {
   }
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), e.seed);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), e.identity.serial_number);
+  read_fixed_tpdos(s, e.fixed_tpdos);
   s.finish();
 }
 
@@ -139,6 +190,7 @@ void read_torque_sensor(YamlSection& s, TorqueSensorConfig& t) {
   set_if(s.optional_number("noise_nm", 0, 1e4), t.noise_nm);
   set_if(s.optional_number("offset_nm", -1e6, 1e6), t.offset_nm);
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), t.seed);
+  read_fixed_tpdos(s, t.fixed_tpdos);
   s.finish();
 }
 

@@ -37,6 +37,7 @@ TorqueSensor::TorqueSensor(const TorqueSensorConfig& config, FrameSink sink)
   set_default_tpdo(
       1, {{config.index, config.sub, static_cast<std::uint8_t>(8 * data_type_size(config.type))}},
       true, 1);
+  for (const auto& fixed : config.fixed_tpdos) fix_tpdo(fixed);
   observe(0);
 }
 

@@ -30,11 +30,16 @@ struct UsedObject {
   UsedInPdo pdo = UsedInPdo::kNone;
   // nullptr: required. Otherwise the device may lack it and this says what the bench does then.
   const char* without = nullptr;
+  // A PDO communication or mapping parameter the bench writes, but reads back and uses as found
+  // where the device has it read-only (pdo_adoption.hpp): `ro` / `const` in the EDS is no
+  // problem for it.
+  bool may_be_read_only = false;
   constexpr bool optional() const noexcept { return without != nullptr; }
 };
 
 // The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
 // heartbeat, identity, TPDO1 with one mapped object), written once for every device's list.
+// The TPDO parameters may be read-only: the bench then uses the mapping it reads back.
 inline constexpr std::size_t kNodeObjectCount = 11;
 constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   using enum UsedAccess;
@@ -53,10 +58,11 @@ constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
        "the revision is not compared"},
       {0x1018, 4, "serial number", dt::kUnsigned32, 0, kRead, kNone,
        "the device's serial number is not recorded"},
-      {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite},
-      {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite},
-      {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite},
-      {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite},
+      {0x1800, 1, "TPDO1 COB-ID", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
+      {0x1800, 2, "TPDO1 transmission type", dt::kUnsigned8, 0, kReadWrite, kNone, nullptr, true},
+      {0x1A00, 0, "TPDO1 number of mapped objects", dt::kUnsigned8, 0, kReadWrite, kNone, nullptr,
+       true},
+      {0x1A00, 1, "TPDO1 mapped object 1", dt::kUnsigned32, 0, kReadWrite, kNone, nullptr, true},
   }};
 }
 
@@ -74,9 +80,10 @@ constexpr std::array<UsedObject, kNodeObjectCount + N> with_node_objects(
 std::string describe(const UsedObject& object);  // "0x6041:0 statusword"
 
 // What `eds` says against each used object: a missing required object, another data type, an
-// access that does not allow the use, not PDO-mappable where it goes in a PDO. Empty: agreed.
-// An optional object missing from the EDS is not a problem. An object the EDS has a section
-// for but could not read (Eds::problem) is "in the EDS but unreadable: <why>".
+// access that does not allow the use (but `ro`/`const` on one marked may_be_read_only), not
+// PDO-mappable where it goes in a PDO. Empty: agreed. An optional object missing from the EDS
+// is not a problem. An object the EDS has a section for but could not read (Eds::problem) is
+// "in the EDS but unreadable: <why>".
 std::vector<std::string> check_against_eds(std::span<const UsedObject> used, const Eds& eds);
 
 }  // namespace wavebench::canopen

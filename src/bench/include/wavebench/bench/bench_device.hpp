@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "wavebench/canopen/emcy.hpp"
 #include "wavebench/canopen/nmt.hpp"
 #include "wavebench/canopen/pdo.hpp"
+#include "wavebench/canopen/pdo_adoption.hpp"
 #include "wavebench/canopen/sdo_client.hpp"
 #include "wavebench/canopen/used_object.hpp"
 #include "wavebench/storage/channel_info.hpp"
@@ -85,8 +87,12 @@ class CanopenDevice : public BenchDevice {
   // Configuration hook, by SDO while the node is pre-operational: reads what the device needs
   // and maps its PDOs. Throws naming the object.
   virtual void configure(canopen::SdoClient& sdo) = 0;
-  // The synchronous TPDOs the bench maps on the node (after configure(): as mapped).
+  // The synchronous TPDOs the bench maps on the node; after configure(): as the device uses
+  // them, which for a mapping the device would not let the bench write is as found.
   virtual std::vector<canopen::PdoConfig> tpdos() const = 0;
+  // After configure(): the TPDOs used, each with its PDO number and whether it was used as
+  // found (fixed); empty before, or for a device that does not record it.
+  const canopen::AdoptedTpdos& adopted_tpdos() const noexcept { return adopted_; }
 
   // SYNC hook: cycle `index` opened.
   virtual void on_sync(std::uint64_t index) noexcept { (void)index; }
@@ -96,6 +102,14 @@ class CanopenDevice : public BenchDevice {
   virtual void on_boot() noexcept {}
   virtual void on_heartbeat(canopen::NmtState state) noexcept { (void)state; }
   virtual void on_emcy(const canopen::Emergency& emcy) noexcept { (void)emcy; }
+
+ protected:
+  // Maps the device's TPDOs, each the bench's mapping where the device takes it and the
+  // device's own where it does not, and finds `needed` in them (canopen::use_tpdos; throws
+  // naming what is missing). tpdos() is then adopted_tpdos().configs().
+  void adopt_tpdos(canopen::SdoClient& sdo, const std::vector<canopen::PdoConfig>& wanted,
+                   std::span<const canopen::NeededObject> needed);
+  canopen::AdoptedTpdos adopted_;
 
  private:
   canopen::NodeId node_;

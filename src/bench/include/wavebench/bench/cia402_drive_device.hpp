@@ -6,7 +6,10 @@
 //
 // Configuration: the drive's units and optional objects (drive_channels.hpp), TPDO1 statusword
 // + position, TPDO2 velocity (+ following error where the drive has it), RPDO1 controlword
-// (the quick stop's path, quick_stop_watch.hpp), and 0x6007 = 2 where the drive has it.
+// (the quick stop's path, quick_stop_watch.hpp), and 0x6007 = 2 where the drive has it. A drive
+// whose TPDO mapping is read-only (issue 20) keeps its own: the bench reads it back and takes
+// each value from whichever TPDO carries it, at any position (canopen/pdo_adoption.hpp); the
+// RPDO must still be writable (a fixed RPDO1 refuses the connection naming it).
 
 #include <memory>
 
@@ -46,8 +49,6 @@ class Cia402DriveDevice final : public CanopenDevice {
   DriveSettings settings_;
   DriveChannels channels_;
   std::unique_ptr<canopen::Cia402Drive> drive_;
-  canopen::PdoLayout position_layout_;
-  canopen::PdoLayout velocity_layout_;
   Int32Unwrapper position_;
   bool abort_option_set_ = false;
 };

@@ -14,6 +14,7 @@
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/bench/drive_units.hpp"
+#include "wavebench/canopen/pdo_adoption.hpp"
 #include "wavebench/canopen/sdo_client.hpp"
 
 namespace wavebench::bench {
@@ -45,8 +46,10 @@ DriveChannels read_drive_channels(canopen::SdoClient& sdo, const DriveSettings& 
 
 // TPDO2: {0x606C, 0x60F4}, or {0x606C} where 0x60F4 is absent. A drive that refuses 0x60F4 in
 // the mapping (06020000, or 06040041 not mappable) gets TPDO2 without it, and the channel
-// becomes absent. Throws std::system_error when TPDO2 cannot be configured at all.
-void map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels);
+// becomes absent. A drive that refuses the mapping as such (read-only, canopen::
+// is_fixed_mapping_refusal) has TPDO2 read back: fixed, used as found. Throws
+// std::system_error when TPDO2 can neither be configured nor read back.
+canopen::PdoAdoption map_drive_velocity_pdo(canopen::SdoClient& sdo, DriveChannels& channels);
 
 // The units and where they came from (info), each absent channel with its reason (warning).
 void log_drive_channels(const std::string& bench_name, const DriveChannels& channels);

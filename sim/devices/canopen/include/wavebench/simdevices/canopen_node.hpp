@@ -49,6 +49,13 @@ struct PdoMappingEntry {
   }
 };
 
+// A TPDO a device does not let a master remap (issue 20): read-only communication and mapping
+// parameters, as some real devices have (a Faulhaber EDS declares them so).
+struct FixedTpdo {
+  int number = 1;                        // 1..4
+  std::vector<PdoMappingEntry> mapping;  // empty: the PDO stays disabled (COB-ID bit 31 set)
+};
+
 class CanopenNode {
  public:
   CanopenNode(std::uint8_t node_id, const NodeIdentity& identity, FrameSink sink);
@@ -86,6 +93,11 @@ class CanopenNode {
                         std::uint8_t transmission_type = 1);
   void set_default_rpdo(int number, std::vector<PdoMappingEntry> mapping, bool valid,
                         std::uint8_t transmission_type = 1);
+  // Makes TPDO `fixed.number` fixed: its mapping, the pre-defined COB-ID (valid unless the
+  // mapping is empty), synchronous transmission type 1, and every communication and mapping
+  // sub-index read-only (an SDO write answers 06010002). Throws std::invalid_argument for an
+  // entry the dictionary does not have, or a mapping over 8 entries or 64 bits.
+  void fix_tpdo(const FixedTpdo& fixed);
 
   void send(std::uint32_t cob_id, std::span<const std::uint8_t> data);
 

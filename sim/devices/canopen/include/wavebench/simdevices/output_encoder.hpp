@@ -22,6 +22,7 @@ struct EncoderConfig {
   std::uint16_t revolutions = 2048;                 // 0x6502; 1 = single-turn (0x10196)
   double noise_rad = 2.4e-6;                        // 1-sigma angle noise (0.5 arcsec)
   std::uint64_t seed = 3;
+  std::vector<FixedTpdo> fixed_tpdos;  // TPDOs a master cannot remap (issue 20)
 };
 
 class Cia406Encoder final : public CanopenNode {

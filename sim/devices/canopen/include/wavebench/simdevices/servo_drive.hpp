@@ -86,6 +86,9 @@ struct ServoDriveConfig {
   // Optional objects this drive model lacks (0x60F4, 0x6077, 0x603F): SDO access and PDO mapping
   // answer 06020000.
   std::vector<std::uint16_t> absent_objects;
+  // TPDOs a master cannot remap (read-only parameters, issue 20), e.g. TPDO1 [0x6064, 0x6041].
+  // The RPDOs stay writable: the bench maps RPDO1 with the controlword for its quick stop.
+  std::vector<FixedTpdo> fixed_tpdos;
 
   bool has(std::uint16_t index) const;
   DriveObjectUnits object_units() const;

@@ -16,8 +16,10 @@
 //                              velocity_encoder_resolution: [131072, 1],   # 0x6090
 //                              gear_ratio: [1, 1],                         # 0x6091
 //                              feed_constant: [131072, 1]},                # 0x6092
-//               absent_objects: []}             # optional objects lacking: "0x60F4", "0x6077",
+//               absent_objects: [],             # optional objects lacking: "0x60F4", "0x6077",
 //                                               # "0x603F" (error code), "0x1018:4" (serial)
+//               fixed_tpdo_mapping: {tpdo1: ["0x6064:0/32", "0x6041:0/16"],
+//                                    tpdo2: ["0x606C:0/32"]}}   # absent: remappable TPDOs
 //     encoder: {node_id: 3, resolution: 1048576, revolutions: 2048, noise_arcsec: 0.5, seed: 3}
 //     torque_sensor: {node_id: 4, object: "0x6130:1", type: i32, scale: 0.001,
 //                     noise_nm: 0.02, offset_nm: 0, seed: 4}
@@ -32,6 +34,16 @@
 // and the drive has no 0x60A8/0x60A9. A zero, or a value >= 2^31, in `factor_group` models a
 // drive whose factor group a master must refuse. `absent_objects` lists optional objects the
 // model lacks: SDO access and PDO mapping of them answer 06020000.
+//
+// Fixed PDO mapping (issue 20): `fixed_tpdo_mapping` (in drive, encoder, torque_sensor and
+// input_encoder) models a device whose TPDO parameters are read-only, as some real devices have
+// them: each key tpdo1..tpdo4 lists that TPDO's mapping as "INDEX:SUB/BITS" (BITS a multiple of
+// 8; at most 8 objects and 64 bits), and its communication (0x180n) and mapping (0x1A0n)
+// parameters answer an SDO write with abort 06010002. The PDO keeps the pre-defined COB-ID
+// (0x180 + node id for TPDO1, 0x280 + node id for TPDO2, ...) and transmission type 1 (every
+// SYNC); an empty list leaves it disabled (COB-ID bit 31 set). A TPDO not listed stays
+// remappable, and so do the RPDOs: the bench maps the drive's RPDO1 with the controlword for its
+// quick stop. An object the device does not have is refused when the bench is built.
 //
 // The gear's "true" parameters are not here: the CLI takes them from a twin-case file.
 

@@ -24,6 +24,7 @@ struct TorqueSensorConfig {
   double noise_nm = 0.02;                // 1-sigma
   double offset_nm = 0;                  // zero error of the sensor
   std::uint64_t seed = 4;
+  std::vector<FixedTpdo> fixed_tpdos;  // TPDOs a master cannot remap (issue 20)
 };
 
 class TorqueSensor final : public CanopenNode {
