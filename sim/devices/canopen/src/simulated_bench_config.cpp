@@ -79,6 +79,7 @@ void read_drive(YamlSection& s, ServoDriveConfig& d) {
   set_if(s.optional_integer("following_error_window", 0, 0xFFFFFFFFLL), d.following_error_window);
   set_if(s.optional_integer("following_error_timeout_ms", 0, 65535), d.following_error_timeout_ms);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), d.identity.serial_number);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) d.identity.heartbeat_producer = *v;
   s.finish();
 }
 
@@ -91,6 +92,7 @@ void read_encoder(YamlSection& s, EncoderConfig& e) {
   }
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), e.seed);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), e.identity.serial_number);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) e.identity.heartbeat_producer = *v;
   s.finish();
 }
 
@@ -130,6 +132,7 @@ void read_torque_sensor(YamlSection& s, TorqueSensorConfig& t) {
   set_if(s.optional_number("noise_nm", 0, 1e4), t.noise_nm);
   set_if(s.optional_number("offset_nm", -1e6, 1e6), t.offset_nm);
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), t.seed);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) t.identity.heartbeat_producer = *v;
   s.finish();
 }
 

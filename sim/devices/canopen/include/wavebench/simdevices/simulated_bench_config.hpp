@@ -31,6 +31,11 @@
 // drive whose factor group a master must refuse. `absent_objects` lists optional objects the
 // model lacks: SDO access and PDO mapping of them answer 06020000.
 //
+// Every device section also takes `heartbeat_producer: false` (default true): a device with no
+// heartbeat producer, no 0x1017 in its object dictionary, that a master must supervise by node
+// guarding (it has 0x100C guard time and 0x100D life time factor, read-write, and answers remote
+// frames on 0x700 + node id with its NMT state and the toggle bit).
+//
 // The gear's "true" parameters are not here: the CLI takes them from a twin-case file.
 
 #include <filesystem>
