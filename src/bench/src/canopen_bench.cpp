@@ -325,8 +325,15 @@ void CanopenBench::watch_liveness() noexcept {
 }
 
 void CanopenBench::check_liveness() noexcept {
-  if (tripped_ || !acquiring_ || state() == BenchLifecycle::kUnconfigured) return;
   const auto wall = Clock::now();
+  // Checked every 10 ms while the loop runs: a longer gap is a loop the bench thread held
+  // (between calls, or busy elsewhere), during which nothing was read: not the nodes' silence.
+  if (wall - last_liveness_check_ > std::chrono::milliseconds(100)) {
+    heartbeats_.loop_resumed(wall);
+    guards_.excuse(wall);
+  }
+  last_liveness_check_ = wall;
+  if (tripped_ || !acquiring_ || state() == BenchLifecycle::kUnconfigured) return;
   if (const auto lost = heartbeats_.lost(now(), wall)) {
     trip("heartbeat of node " + std::to_string(lost->node) + " (" + node_name(lost->node) +
          ") lost: none for " + std::to_string(std::lround(lost->silent_s * 1e3)) +

@@ -60,10 +60,12 @@ void HeartbeatWatch::frame(const can::Frame& frame, Clock::time_point processed)
 }
 
 bool HeartbeatWatch::silent(const Node& n, double now_s, Clock::time_point wall) const noexcept {
-  if (timeout_s_ <= 0 || seconds(wall - n.processed) <= timeout_s_) return false;
+  if (timeout_s_ <= 0 || seconds(wall - std::max(n.processed, resumed_)) <= timeout_s_)
+    return false;
   if (!simulated_) return true;
   // Simulated clock: the heartbeat is overdue in bench time too, or the node is mute.
-  return now_s - n.last_s > timeout_s_ || seconds(wall - n.any_frame) > timeout_s_;
+  return now_s - n.last_s > timeout_s_ ||
+         seconds(wall - std::max(n.any_frame, resumed_)) > timeout_s_;
 }
 
 std::optional<HeartbeatWatch::Lost> HeartbeatWatch::lost(double now_s,

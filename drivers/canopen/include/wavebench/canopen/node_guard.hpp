@@ -41,6 +41,11 @@ class NodeGuard {
   bool poll_due(Clock::time_point now) const noexcept { return now >= next_poll_; }
   // The request went out at `now`.
   void polled(Clock::time_point now) noexcept;
+  // The caller's loop was held until `now` (it could neither send nor read): a request still
+  // unanswered counts from now.
+  void excuse(Clock::time_point now) noexcept {
+    if (unanswered_since_ && *unanswered_since_ < now) unanswered_since_ = now;
+  }
 
   enum class Seen { none, answer, boot_up, toggle_error };
   // Every frame from the bus; only this node's answers and boot-up messages count.

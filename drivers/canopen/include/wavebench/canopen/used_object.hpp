@@ -29,7 +29,7 @@ struct UsedObject {
 };
 
 // The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
-// heartbeat, identity, TPDO1 with one mapped object), written once for every device's list.
+// heartbeat or else node guarding, identity, TPDO1 with one mapped object), written once for every device's list.
 inline constexpr std::size_t kNodeObjectCount = 11;
 constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   using enum UsedAccess;
@@ -38,7 +38,8 @@ constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   return {{
       {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
       {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone, true},
-      {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite},
+      // Optional: a node without a heartbeat producer is node-guarded (CiA 301 §7.2.8.3.2).
+      {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite, kNone, true},
       {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},
       {0x1018, 2, "product code", dt::kUnsigned32, 0, kRead},
       {0x1018, 3, "revision number", dt::kUnsigned32, 0, kRead},

@@ -144,6 +144,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   boost::asio::io_context& io_;
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
   boost::asio::steady_timer liveness_timer_{io_};
+  std::chrono::steady_clock::time_point last_liveness_check_{};
 
   std::unique_ptr<canopen::Master> master_;
   std::unique_ptr<CycleClock> clock_;

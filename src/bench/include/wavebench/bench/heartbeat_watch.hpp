@@ -9,6 +9,10 @@
 // bench time, or it has sent no frame at all (PDO, SDO, EMCY) for longer than the timeout of
 // wall time. On the real clock bench time is wall time.
 //
+// A loop that was held (the bench thread did not run it: nothing was read, nothing could react)
+// is not silence of the nodes: after loop_resumed() silence is judged from then on; the silence
+// reported stays the time since the node's last heartbeat.
+//
 // Also keeps, per node, the largest wall-clock gap between two processed heartbeats: how long
 // the event loop left them unread.
 
@@ -42,6 +46,8 @@ class HeartbeatWatch {
   bool watches(canopen::NodeId node) const { return last_.contains(node); }
   // Heartbeats and frames from here on count from `now_s` and `wall` (a fault cleared).
   void restart(double now_s, Clock::time_point wall) noexcept;
+  // The event loop runs again after a hold that ended at `wall`.
+  void loop_resumed(Clock::time_point wall) noexcept { resumed_ = wall; }
 
   // A heartbeat of `node` processed at bench time `now_s` and wall time `processed`.
   void seen(canopen::NodeId node, double now_s, Clock::time_point processed,
@@ -86,6 +92,7 @@ class HeartbeatWatch {
   std::map<canopen::NodeId, Node> last_;
   double timeout_s_ = 0;
   bool simulated_ = false;
+  Clock::time_point resumed_{};
 };
 
 }  // namespace wavebench::bench

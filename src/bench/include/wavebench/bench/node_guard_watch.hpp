@@ -27,6 +27,10 @@ class NodeGuardWatch {
   bool empty() const noexcept { return guards_.empty(); }
   // Guarding (re)starts: every request is due now, every life time runs from now.
   void start(Clock::time_point now) noexcept;
+  // The bench's loop ran again after a hold that ended at `now` (NodeGuard::excuse).
+  void excuse(Clock::time_point now) noexcept {
+    for (auto& [node, g] : guards_) g.excuse(now);
+  }
   // Sends the requests that are due; a request the bus refuses is retried next time.
   void poll(can::CanBus& bus, Clock::time_point now) noexcept;
 
