@@ -31,14 +31,6 @@ std::optional<canopen::NodeId> sending_node(const can::Frame& f) {
 
 }  // namespace
 
-void HeartbeatWatch::restart(double now_s, Clock::time_point wall) noexcept {
-  for (auto& [node, n] : last_) {
-    n.last_s = now_s;
-    n.processed = wall;
-    n.any_frame = wall;
-  }
-}
-
 void HeartbeatWatch::seen(canopen::NodeId node, double now_s, Clock::time_point processed,
                           std::optional<canopen::NmtState> state) noexcept {
   const auto it = last_.find(node);

@@ -44,8 +44,6 @@ class HeartbeatWatch {
   }
   void disarm() noexcept { last_.clear(); }
   bool watches(canopen::NodeId node) const { return last_.contains(node); }
-  // Heartbeats and frames from here on count from `now_s` and `wall` (a fault cleared).
-  void restart(double now_s, Clock::time_point wall) noexcept;
   // The event loop runs again after a hold that ended at `wall`.
   void loop_resumed(Clock::time_point wall) noexcept { resumed_ = wall; }
 
