@@ -54,8 +54,11 @@ void CycleEngine::start(CycleCheck check) {
   mute_ = 0;
   late_devices_.clear();
   last_warning_ = {};
-  clock_.on_late_answers(
-      {[this] { return awaits_answers(); }, [this] { mute_ |= expected_ & ~arrived_; }});
+  clock_.on_late_answers({[this] { return awaits_answers(); },
+                          [this] {
+                            mute_ |= expected_ & ~arrived_;
+                            awaited_ = 0;
+                          }});
   clock_.start([this](std::uint64_t index, std::int64_t time_ns) { on_sync(index, time_ns); });
 }
 
@@ -87,6 +90,7 @@ void CycleEngine::on_sync(std::uint64_t index, std::int64_t time_ns) {
   record_.drive.status_valid = false;
   record_.drive.following_error_valid = false;
   arrived_ = 0;
+  awaited_ = 0;
   open_ = true;
   for (auto* device : canopen_) device->on_sync(index);
 }
@@ -94,7 +98,7 @@ void CycleEngine::on_sync(std::uint64_t index, std::int64_t time_ns) {
 bool CycleEngine::awaits_answers() noexcept {
   const std::uint32_t missing = expected_ & ~arrived_ & ~mute_;
   if (!open_ || missing == 0) return false;
-  note_late(missing);
+  awaited_ = missing;  // named as late once their answers are in
   return true;
 }
 
@@ -117,7 +121,7 @@ void CycleEngine::note_late(std::uint32_t missing) noexcept {
   std::string names;
   for (const auto& n : late_devices_) names += (names.empty() ? "" : ", ") + n;
   spdlog::warn(
-      "slower than the SYNC rate: {}; the simulated clock waits for their answers before the "
+      "slower than the SYNC rate: {}; the simulated clock waited for their answers before the "
       "next SYNC (acquisition_stats: cycles_waited_for_devices)",
       names);
 }
@@ -131,6 +135,8 @@ void CycleEngine::on_frame(const FrameSource& source, const can::Frame& frame) n
   }
   arrived_ |= source.bit;
   if (arrived_ == expected_) {
+    if (awaited_ != 0) note_late(awaited_);
+    awaited_ = 0;
     close();
     clock_.cycle_complete();
   }

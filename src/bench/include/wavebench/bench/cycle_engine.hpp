@@ -59,7 +59,8 @@ class CycleEngine {
   CycleClock& clock() noexcept { return clock_; }
   // Payload bits per cycle on the bus (SYNC and every TPDO), for the bus-load estimate.
   double bits_per_cycle() const;
-  // Simulated clock: the devices whose late answers a SYNC waited for since start(), by name.
+  // Simulated clock: the devices whose late answers a SYNC waited for (and got) since start(),
+  // by name.
   const std::vector<std::string>& late_devices() const noexcept { return late_devices_; }
 
  private:
@@ -84,7 +85,8 @@ class CycleEngine {
   CycleCheck check_;
   std::uint32_t expected_ = 0;
   std::uint32_t arrived_ = 0;
-  std::uint32_t mute_ = 0;  // sources a wait gave up on, until they send again
+  std::uint32_t mute_ = 0;     // sources a wait gave up on, until they send again
+  std::uint32_t awaited_ = 0;  // sources the open cycle waits for past its timeout
   std::vector<std::string> late_devices_;
   std::chrono::steady_clock::time_point last_warning_{};
   bool open_ = false;
