@@ -100,6 +100,7 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"cycles_timed_out", a.cycles_timed_out},
           {"cycles_waited_for_devices", a.cycles_waited_for_devices},
           {"longest_device_wait_s", a.longest_device_wait_s},
+          {"late_devices", a.late_devices},
           {"late_frames", a.late_frames},
           {"sync_lateness_p50_s", a.sync_lateness_p50_s},
           {"sync_lateness_p99_s", a.sync_lateness_p99_s},

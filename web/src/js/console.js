@@ -77,6 +77,7 @@ function showBench(s) {
       .map((x) => (x === undefined || x === null ? '—' : `${(x * 1e6).toFixed(0)} µs`)).join(' / ')],
     ['SYNC late / skipped', `${fmt(a.sync_late)} / ${fmt(a.sync_skipped)}`],
     ['missed cycles (timed out)', fmt(a.cycles_timed_out)],
+    ['cycles waited for slow devices (longest)', a.cycles_waited_for_devices ? `${a.cycles_waited_for_devices} (${(1e3 * a.longest_device_wait_s).toFixed(0)} ms)` : fmt(a.cycles_waited_for_devices)],
     ['incomplete samples', fmt(a.incomplete_samples)],
     ['bus load', a.bus_load === undefined ? '—' : `${(100 * a.bus_load).toFixed(1)} %`],
     ['samples', fmt(a.samples)],
