@@ -131,6 +131,34 @@ TEST(BenchConfig, QuickStopTimeoutTakesATime) {
   EXPECT_NE(e.expected().find("(0, 10 s]"), std::string::npos) << e.expected();
 }
 
+// Node guarding (issue 20): can.node_guarding with defaults 100 ms x 3 and no forced nodes;
+// simbench's heartbeat_producer switch passes through simulated.simbench.
+TEST(BenchConfig, NodeGuardingKeys) {
+  const auto defaults = default_simulated_bench_config().can.node_guarding;
+  EXPECT_DOUBLE_EQ(defaults.guard_time_s, 0.1);
+  EXPECT_EQ(defaults.life_time_factor, 3);
+  EXPECT_TRUE(defaults.nodes.empty());
+  const auto c = parse_bench_config(
+      "can: {node_guarding: {guard_time: \"50 ms\", life_time_factor: 4, nodes: [1, 4]}}\n"
+      "simulated: {simbench: {drive: {heartbeat_producer: false}}}\n",
+      kConfigs / "benches", "t.yaml");
+  EXPECT_DOUBLE_EQ(c.can.node_guarding.guard_time_s, 0.05);
+  EXPECT_EQ(c.can.node_guarding.life_time_factor, 4);
+  EXPECT_EQ(c.can.node_guarding.nodes, (std::vector<std::uint8_t>{1, 4}));
+  ASSERT_TRUE(c.simulated && c.simulated->devices);
+  EXPECT_FALSE(c.simulated->devices->drive.identity.heartbeat_producer);
+
+  auto e = parse_error("can: {node_guarding: {guard_time: \"0 ms\"}}\n");
+  EXPECT_EQ(e.key(), "can.node_guarding.guard_time");
+  e = parse_error("can: {node_guarding: {life_time_factor: 0}}\n");
+  EXPECT_EQ(e.key(), "can.node_guarding.life_time_factor");
+  EXPECT_EQ(e.value(), "0");
+  e = parse_error("can: {node_guarding: {nodes: [128]}}\n");
+  EXPECT_EQ(e.key().rfind("can.node_guarding.nodes", 0), 0U) << e.key();
+  e = parse_error("can: {node_guarding: {guard: 1}}\n");
+  EXPECT_EQ(e.key(), "can.node_guarding.guard");
+}
+
 // EDS and identity keys (issue #9): the shipped configs name the simulated devices' EDS files;
 // a missing or malformed EDS and bad identity values are errors naming the key.
 TEST(BenchConfig, EdsAndIdentityKeys) {

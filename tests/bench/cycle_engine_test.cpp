@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/bench/heartbeat_watch.hpp"
@@ -61,7 +62,8 @@ struct Rig {
   std::unique_ptr<can::VirtualCanEndpoint> master_end = bus.endpoint("master");
   std::unique_ptr<can::VirtualCanEndpoint> devices_end = bus.endpoint("devices");
   canopen::Master master{*master_end, {}};
-  SimulatedSyncClock clock{*master_end, 1e-3, std::chrono::milliseconds(5)};
+  SimulatedSyncClock clock{*master_end, 1e-3, std::chrono::milliseconds(5),
+                           std::chrono::milliseconds(100)};
   CycleEngine engine{master, clock};
   FakeDevice a{5, "theta_out"};
   FakeDevice b{6, "extra_angle"};
@@ -153,29 +155,156 @@ TEST(CycleRecord, SlotsFollowTheCoreChannelTableThenTheExtras) {
   EXPECT_EQ(core[slot::kBrakeCurrent.index].name, "brake_current");
 }
 
-TEST(HeartbeatWatch, JudgesSilenceInBenchTimeAndKeepsTheLargestProcessingGap) {
+// A TPDO of node `node` as a can::Frame (for the heartbeat watch's "any frame" rule).
+can::Frame tpdo(canopen::NodeId node) {
+  return value_frame(node, 0);
+}
+
+TEST(HeartbeatWatch, RealClockJudgesWallSilenceAndKeepsTheLargestProcessingGap) {
   HeartbeatWatch w;
   const std::vector<canopen::NodeId> nodes{1, 2};
-  w.arm(nodes, 0.0, 0.5);
   const auto t0 = HeartbeatWatch::Clock::now();
-  w.seen(1, 0.1, t0);
-  w.seen(1, 0.2, t0 + std::chrono::milliseconds(100));
-  w.seen(1, 0.45, t0 + std::chrono::milliseconds(350));
-  w.seen(2, 0.4, t0);
-  EXPECT_FALSE(w.lost(0.5));
-  EXPECT_FALSE(w.lost(0.9));
-  const auto lost = w.lost(0.91);
+  w.arm(nodes, 0.0, 0.5, false, t0);
+  w.seen(1, 0.1, t0 + std::chrono::milliseconds(100));
+  w.seen(1, 0.2, t0 + std::chrono::milliseconds(200));
+  w.seen(1, 0.45, t0 + std::chrono::milliseconds(450));
+  w.seen(2, 0.4, t0 + std::chrono::milliseconds(400));
+  EXPECT_FALSE(w.lost(0.9, t0 + std::chrono::milliseconds(900)));
+  const auto lost = w.lost(0.91, t0 + std::chrono::milliseconds(910));
   ASSERT_TRUE(lost);
   EXPECT_EQ(lost->node, 2);
-  EXPECT_NEAR(lost->silent_s, 0.51, 1e-12);
-  EXPECT_TRUE(w.missing(2, 0.91));
-  EXPECT_FALSE(w.missing(1, 0.91));
+  EXPECT_NEAR(lost->silent_s, 0.51, 1e-9);
+  EXPECT_TRUE(w.missing(2, 0.91, t0 + std::chrono::milliseconds(910)));
+  EXPECT_FALSE(w.missing(1, 0.91, t0 + std::chrono::milliseconds(910)));
   EXPECT_EQ(w.count(1), 3U);
   EXPECT_NEAR(w.largest_gap(1), 0.25, 1e-9);
   w.seen(9, 1.0, t0);  // not watched
   EXPECT_FALSE(w.watches(9));
-  w.arm(nodes, 0.0, 0.0);  // timeout 0: never judged
-  EXPECT_FALSE(w.lost(100.0));
+  w.arm(nodes, 0.0, 0.0, false, t0);  // timeout 0: never judged
+  EXPECT_FALSE(w.lost(100.0, t0 + std::chrono::seconds(100)));
+}
+
+TEST(HeartbeatWatch, SimulatedClockSlowerThanRealTimeDoesNotTripWhileTheNodeSendsFrames) {
+  HeartbeatWatch w;
+  const std::vector<canopen::NodeId> nodes{3};
+  const auto t0 = HeartbeatWatch::Clock::now();
+  w.arm(nodes, 0.0, 0.5, true, t0);
+  w.seen(3, 0.0, t0);
+  // A loaded machine: 2 s of wall time are 0.2 s of bench time; its PDOs keep coming.
+  for (int ms = 10; ms <= 2000; ms += 10) {
+    const auto wall = t0 + std::chrono::milliseconds(ms);
+    w.frame(tpdo(3), wall);
+    ASSERT_FALSE(w.lost(ms * 1e-4, wall)) << ms;
+  }
+}
+
+TEST(HeartbeatWatch, SimulatedClockFasterThanRealTimeTripsWithinTheTimeoutOfWallTime) {
+  HeartbeatWatch w;
+  const std::vector<canopen::NodeId> nodes{3};
+  const auto t0 = HeartbeatWatch::Clock::now();
+  w.arm(nodes, 0.0, 0.5, true, t0);
+  w.seen(3, 0.0, t0);
+  // Bench time runs 10x real time; the heartbeat stopped, the PDOs go on.
+  for (int ms = 10; ms <= 500; ms += 10) {
+    const auto wall = t0 + std::chrono::milliseconds(ms);
+    w.frame(tpdo(3), wall);
+    ASSERT_FALSE(w.lost(ms * 1e-2, wall)) << ms;  // not yet 0.5 s of wall time
+  }
+  const auto lost = w.lost(5.01, t0 + std::chrono::milliseconds(501));
+  ASSERT_TRUE(lost);
+  EXPECT_NEAR(lost->silent_s, 0.501, 1e-9);  // the wall-clock silence, truthfully
+}
+
+TEST(HeartbeatWatch, SimulatedClockSilentBusTripsOnWallTimeThoughBenchTimeStandsStill) {
+  HeartbeatWatch w;
+  const std::vector<canopen::NodeId> nodes{1, 3};
+  const auto t0 = HeartbeatWatch::Clock::now();
+  w.arm(nodes, 1.0, 0.5, true, t0);
+  w.seen(1, 1.0, t0);
+  w.seen(3, 1.0, t0);
+  w.frame(tpdo(1), t0 + std::chrono::milliseconds(50));
+  // Nothing more: no SYNC completes, bench time stays at 1.0 s.
+  EXPECT_FALSE(w.lost(1.0, t0 + std::chrono::milliseconds(500)));
+  const auto lost = w.lost(1.0, t0 + std::chrono::milliseconds(551));
+  ASSERT_TRUE(lost);
+  EXPECT_EQ(lost->node, 1);
+  EXPECT_NEAR(lost->silent_s, 0.551, 1e-9);
+  // The master's own frames (SDO requests, RPDOs) and SYNC say nothing of a node.
+  HeartbeatWatch v;
+  v.arm(nodes, 1.0, 0.5, true, t0);
+  v.frame(can::Frame::make(0x601, {0x40, 0, 0x10, 0, 0, 0, 0, 0}),
+          t0 + std::chrono::milliseconds(400));
+  v.frame(can::Frame::make(0x201, {0, 0}), t0 + std::chrono::milliseconds(400));
+  EXPECT_TRUE(v.lost(1.0, t0 + std::chrono::milliseconds(501)));
+}
+
+// A device slower than the SYNC rate: node 6 answers each SYNC only 30 ms later (the cycle
+// timeout is 5 ms). The next SYNC waits for its late answer instead of queueing up behind it.
+TEST(SimulatedSyncClock, WaitsForLateAnswersInsteadOfQueueingSyncsAndCountsTheWait) {
+  boost::asio::io_context io;
+  can::VirtualCanBus bus{io};
+  auto master_end = bus.endpoint("master");
+  auto devices_end = bus.endpoint("devices");
+  canopen::Master master{*master_end, {}};
+  SimulatedSyncClock clock{*master_end, 1e-3, std::chrono::milliseconds(5),
+                           std::chrono::milliseconds(400)};
+  CycleEngine engine{master, clock};
+  FakeDevice a{5, "theta_out"};
+  FakeDevice b{6, "extra_angle"};
+  a.bind({slot::kThetaOut});
+  b.bind({ChannelSlot::extra(0)});
+  engine.attach({&a, &b}, {});
+  Collector collector;
+  engine.add_observer(collector);
+  std::vector<std::string> events;  // "S" a SYNC seen by the devices, "B" node 6 answered
+  boost::asio::steady_timer slow{io};
+  std::int32_t k = 0;
+  auto answer = devices_end->on_frame([&](const can::Frame& f) {
+    if (f.id != 0x80) return;
+    events.push_back("S");
+    ++k;
+    devices_end->send(value_frame(5, 1000 * k));
+    slow.expires_after(std::chrono::milliseconds(30));
+    slow.async_wait([&, value = 2000 * k](const boost::system::error_code& ec) {
+      if (ec) return;
+      events.push_back("B");
+      devices_end->send(value_frame(6, value));
+    });
+  });
+  engine.start(nullptr);
+  while (collector.samples.size() < 5) io.run_one_for(std::chrono::milliseconds(50));
+  engine.stop();
+  ASSERT_GE(events.size(), 10U);
+  // Every SYNC after the first follows the slow device's answer to the one before.
+  for (std::size_t i = 0; i + 1 < events.size(); i += 2) {
+    EXPECT_EQ(events[i], "S") << i;
+    EXPECT_EQ(events[i + 1], "B") << i;
+  }
+  for (const auto& s : collector.samples) {
+    EXPECT_TRUE(s.valid(storage::kThetaOutValid));
+    EXPECT_TRUE(s.extra_arrived(0));
+    EXPECT_DOUBLE_EQ(s.extra[0], 2 * s.theta_out_rad);
+  }
+  const auto stats = clock.statistics();
+  EXPECT_GE(stats.cycles_waited_for_devices, 5U);
+  EXPECT_GE(stats.cycles_timed_out, 5U);
+  EXPECT_EQ(stats.cycles_given_up, 0U);
+  EXPECT_GE(stats.longest_device_wait_s, 0.025);
+  EXPECT_LT(stats.longest_device_wait_s, 0.4);
+  EXPECT_EQ(engine.late_devices(), std::vector<std::string>{"fake (node 6)"});
+}
+
+TEST(SimulatedSyncClock, ADeviceThatNeverAnswersIsGivenUpOnceThenNotWaitedFor) {
+  Rig rig;
+  rig.b_answers = false;
+  rig.engine.start(nullptr);
+  rig.run_until_samples(20);
+  rig.engine.stop();
+  const auto stats = rig.clock.statistics();
+  EXPECT_EQ(stats.cycles_given_up, 1U);
+  EXPECT_EQ(stats.cycles_waited_for_devices, 0U);
+  EXPECT_TRUE(rig.engine.late_devices().empty());  // not late: mute
+  EXPECT_GE(stats.cycles_timed_out, 20U);
 }
 
 }  // namespace

@@ -376,13 +376,25 @@ class Check {
       }
     });
     const auto before = bench_.acquisition_stats();
+    const auto guards_before = guard_counts();
     const auto t0 = std::chrono::steady_clock::now();
     bench_.idle_for(window);
+    // Node guarding runs on the wall clock: a few guard times of it, however fast bench time.
+    const double guard_wall =
+        bench_.node_guards().empty() ? 0 : 2.5 * config_.can.node_guarding.guard_time_s;
+    while (std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count() <
+           guard_wall)
+      bench_.idle_for(10 * period);
     const auto real = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto after = bench_.acquisition_stats();
     subscription.reset();
 
+    const auto guards_after = guard_counts();
     for (const auto& d : devices) {
+      if (const auto* g = bench_.node_guards().guard(d.node)) {
+        guard_row(d, *g, guards_after.at(d.node) - guards_before.at(d.node), real);
+        continue;
+      }
       const auto n = heartbeats[d.node];
       const bool ok = n > 0 && states[d.node] == canopen::NmtState::operational;
       add(device_label(d), "heartbeat", ok,
@@ -419,12 +431,23 @@ class Check {
     }
     // The first and the last cycle of the window may be cut by it.
     const bool ok = syncs > 0 && missing.empty() && incomplete <= 2 && samples + 2 >= syncs;
+    std::string slow;
+    if (after.cycles_waited_for_devices > before.cycles_waited_for_devices) {
+      std::string names;
+      for (const auto& n : after.late_devices) names += (names.empty() ? "" : ", ") + n;
+      slow = fmt::format(
+          "; slower than the SYNC rate: {} SYNCs waited past can.cycle_timeout for {} (longest "
+          "{:.0f} ms)",
+          after.cycles_waited_for_devices - before.cycles_waited_for_devices, names,
+          after.longest_device_wait_s * 1e3);
+    }
     add("bus", "SYNC round trip", ok,
-        missing.empty()
-            ? fmt::format("{} SYNCs, {} samples, {} incomplete; answered by drive TPDO1/TPDO2, "
-                          "encoder TPDO1, torque sensor TPDO1",
-                          syncs, samples, incomplete)
-            : fmt::format("{} SYNCs, no answer from {}", syncs, missing));
+        (missing.empty()
+             ? fmt::format("{} SYNCs, {} samples, {} incomplete; answered by drive TPDO1/TPDO2, "
+                           "encoder TPDO1, torque sensor TPDO1",
+                           syncs, samples, incomplete)
+             : fmt::format("{} SYNCs, no answer from {}", syncs, missing)) +
+            slow);
 
     std::string load =
         fmt::format("estimated {:.1f} % of {:.0f} kbit/s at a {} us SYNC", after.bus_load * 100,
@@ -436,6 +459,36 @@ class Check {
         load_ok ? load
                 : load + fmt::format(": above can.bus_load_warning = {:.0f} %",
                                      config_.can.bus_load_warning * 100));
+  }
+
+  struct GuardCounts {
+    std::uint64_t answers = 0;
+    std::uint64_t toggle_errors = 0;
+    GuardCounts operator-(const GuardCounts& o) const {
+      return {answers - o.answers, toggle_errors - o.toggle_errors};
+    }
+  };
+  std::map<std::uint8_t, GuardCounts> guard_counts() const {
+    std::map<std::uint8_t, GuardCounts> out;
+    for (const auto* g : bench_.node_guards().all())
+      out[g->node()] = {g->answers(), g->toggle_errors()};
+    return out;
+  }
+
+  // A node without a heartbeat producer: its node-guarding answers in the window.
+  void guard_row(const BenchCanopenDevice& d, const canopen::NodeGuard& g, GuardCounts seen,
+                 double window) {
+    const bool ok =
+        seen.answers > 0 && seen.toggle_errors == 0 && g.state() == canopen::NmtState::operational;
+    std::string detail =
+        seen.answers == 0
+            ? fmt::format("no answer in {:.2f} s", window)
+            : fmt::format("{} answers in {:.2f} s, {}", seen.answers, window,
+                          g.state() ? std::string(canopen::to_string(*g.state())) : "no state");
+    if (seen.toggle_errors > 0) detail += fmt::format(", {} toggle errors", seen.toggle_errors);
+    detail += fmt::format(" (guard time {} ms, life time {} ms; no heartbeat producer)",
+                          g.guard_time().count(), g.life_time().count());
+    add(device_label(d), "node guarding", ok, detail);
   }
 
   void units_row(const BenchCanopenDevice& drive, bool answering) {

@@ -123,6 +123,17 @@ void read_can(YamlSection& s, CanSettings& can) {
       s.fail("quick_stop_timeout", s.value_text("quick_stop_timeout"), "a time in (0, 10 s]");
     can.quick_stop_timeout_s = *v;
   }
+  if (auto g = s.optional_section("node_guarding")) {
+    set_if(g->optional_quantity_in("guard_time", Dimension::kTime, 1e-3, 65.535,
+                                   "a time in [1 ms, 65.535 s]"),
+           can.node_guarding.guard_time_s);
+    set_if(g->optional_integer("life_time_factor", 1, 255), can.node_guarding.life_time_factor);
+    if (const auto nodes = g->optional_integer_list("nodes", 1, 127)) {
+      can.node_guarding.nodes.clear();
+      for (const auto n : *nodes) can.node_guarding.nodes.push_back(static_cast<std::uint8_t>(n));
+    }
+    g->finish();
+  }
   if (auto nodes = s.optional_section("nodes")) {
     set_if(nodes->optional_integer("drive", 1, 127), can.drive_node);
     set_if(nodes->optional_integer("encoder", 1, 127), can.encoder_node);

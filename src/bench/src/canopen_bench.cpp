@@ -63,7 +63,11 @@ CanopenBench::CanopenBench(BenchConfig config, can::CanBus& bus)
       std::make_unique<canopen::Master>(bus_, std::move(hooks), ms(config_.can.sdo_timeout_s));
   const double period = config_.description.sync_period_s;
   if (config_.description.simulated_clock) {
-    clock_ = std::make_unique<SimulatedSyncClock>(bus_, period, ms(config_.can.cycle_timeout_s));
+    // Late answers are waited for up to half the heartbeat timeout: the other nodes answer
+    // SYNCs again before the heartbeat watch judges them.
+    const double timeout = config_.description.limits.heartbeat_timeout_s;
+    clock_ = std::make_unique<SimulatedSyncClock>(bus_, period, ms(config_.can.cycle_timeout_s),
+                                                  ms(timeout > 0 ? timeout / 2 : 1.0));
   } else {
     auto real = std::make_unique<RealSyncClock>(
         *master_, std::chrono::microseconds(std::lround(period * 1e6)));
@@ -221,13 +225,31 @@ void CanopenBench::configure_nodes() {
   const auto period_us =
       static_cast<std::uint32_t>(std::lround(config_.description.sync_period_s * 1e6));
   const auto producer_ms = static_cast<std::uint16_t>(std::lround(can.heartbeat_producer_s * 1e3));
+  guards_.clear();
+  const auto& guarded = can.node_guarding.nodes;
   for (auto* device : canopen_devices()) {
     auto& sdo = master_->sdo(device->node());
     // 0x1006 is optional on a consumer of SYNC; the simulated devices step by it.
     std::error_code ignored;
     sdo.write<std::uint32_t>(0x1006, 0, period_us, ignored);
+    if (std::find(guarded.begin(), guarded.end(), device->node()) != guarded.end()) {
+      // Its heartbeats would read as guard answers with a wrong toggle: off where it has them.
+      sdo.write<std::uint16_t>(0x1017, 0, 0, ignored);
+      guard_node(*device, sdo, "can.node_guarding.nodes");
+      continue;
+    }
     try {
       sdo.write<std::uint16_t>(0x1017, 0, producer_ms);
+    } catch (const canopen::SdoError& e) {
+      // No heartbeat producer (CiA 301 makes it optional only beside node guarding).
+      using canopen::SdoAbort;
+      if (e.code() == SdoAbort::no_object || e.code() == SdoAbort::read_only ||
+          e.code() == SdoAbort::no_sub_index) {
+        guard_node(*device, sdo, std::string("0x1017: ") + e.code().message());
+        continue;
+      }
+      throw std::runtime_error(device->describe() +
+                               ": heartbeat producer time 0x1017: " + e.what());
     } catch (const std::exception& e) {
       throw std::runtime_error(device->describe() +
                                ": heartbeat producer time 0x1017: " + e.what());
@@ -251,17 +273,75 @@ void CanopenBench::configure_nodes() {
 
 void CanopenBench::start_acquisition() {
   master_->nmt().send(canopen::NmtCommand::start, 0);
-  heartbeats_.arm(all_nodes(), now(), config_.description.limits.heartbeat_timeout_s);
+  std::vector<canopen::NodeId> beating;
+  for (const auto node : all_nodes())
+    if (!guards_.guards(node)) beating.push_back(node);
+  heartbeats_.arm(beating, now(), config_.description.limits.heartbeat_timeout_s,
+                  clock_->simulated());
+  guards_.start(Clock::now());
   subscriptions_.clear();
   subscriptions_.push_back(bus_.on_frame([this](const can::Frame& f) { on_heartbeat_frame(f); }));
   acquiring_ = true;
   engine_->start([this](const CycleRecord& record) { check_cycle(record); });
+  watch_liveness();
 }
 
 void CanopenBench::stop_acquisition() noexcept {
   acquiring_ = false;
+  liveness_timer_.cancel();
   engine_->stop();
   heartbeats_.disarm();
+}
+
+void CanopenBench::guard_node(CanopenDevice& device, canopen::SdoClient& sdo,
+                              const std::string& why) {
+  const auto& g = config_.can.node_guarding;
+  const auto guard_time = ms(g.guard_time_s);
+  auto life_time = guard_time * g.life_time_factor;
+  // safety.heartbeat_timeout bounds a loss whichever way the node is supervised.
+  const auto bound = config_.description.limits.heartbeat_timeout_s;
+  if (bound > 0) life_time = std::max(guard_time, std::min(life_time, ms(bound)));
+  // Where the node has them: it may then guard its master too (life guarding).
+  std::error_code time_ec, factor_ec;
+  sdo.write<std::uint16_t>(0x100C, 0, static_cast<std::uint16_t>(guard_time.count()), time_ec);
+  sdo.write<std::uint8_t>(0x100D, 0, g.life_time_factor, factor_ec);
+  guards_.add(device.node(), guard_time, life_time);
+  spdlog::info(
+      "bench '{}': {}: node guarding ({}): guard time {} ms, life time {} ms{}",
+      config_.description.name, device.describe(), why, guard_time.count(), life_time.count(),
+      time_ec || factor_ec ? " (0x100C/0x100D not written: the node does not guard its master)"
+                           : "");
+}
+
+void CanopenBench::watch_liveness() noexcept {
+  if (!acquiring_) return;
+  guards_.poll(bus_, Clock::now());
+  check_liveness();
+  // Often enough to notice a loss within a few ms of its timeout, whatever the cycles do.
+  liveness_timer_.expires_after(std::chrono::milliseconds(10));
+  liveness_timer_.async_wait([this, alive = alive_](const boost::system::error_code& ec) {
+    if (!ec && *alive) watch_liveness();
+  });
+}
+
+void CanopenBench::check_liveness() noexcept {
+  const auto wall = Clock::now();
+  // Checked every 10 ms while the loop runs: a longer gap is a loop the bench thread held
+  // (between calls, or busy elsewhere), during which nothing was read: not the nodes' silence.
+  if (wall - last_liveness_check_ > std::chrono::milliseconds(100)) {
+    heartbeats_.loop_resumed(wall);
+    guards_.excuse(wall);
+  }
+  last_liveness_check_ = wall;
+  if (tripped_ || !acquiring_ || state() == BenchLifecycle::kUnconfigured) return;
+  if (const auto lost = heartbeats_.lost(now(), wall)) {
+    trip("heartbeat of node " + std::to_string(lost->node) + " (" + node_name(lost->node) +
+         ") lost: none for " + std::to_string(std::lround(lost->silent_s * 1e3)) +
+         " ms (consumer time " + std::to_string(ms(heartbeats_.timeout()).count()) + " ms)");
+    return;
+  }
+  if (const auto lost = guards_.lost(wall))
+    trip(NodeGuardWatch::describe(*lost, node_name(lost->node)));
 }
 
 void CanopenBench::disconnect() noexcept {
@@ -301,13 +381,8 @@ void CanopenBench::check_cycle(const CycleRecord& record) noexcept {
   brake_->beat_if_due(now());
   if (quick_stop_watch_.pending()) watch_quick_stop(record.drive);
   if (tripped_) return;
-  if (const auto lost =
-          state() == BenchLifecycle::kUnconfigured ? std::nullopt : heartbeats_.lost(now())) {
-    trip("heartbeat of node " + std::to_string(lost->node) + " (" + node_name(lost->node) +
-         ") lost: none for " + std::to_string(std::lround(lost->silent_s * 1e3)) +
-         " ms (consumer time " + std::to_string(ms(heartbeats_.timeout()).count()) + " ms)");
-    return;
-  }
+  check_liveness();
+  if (tripped_) return;
   const auto& brake = brake_->cycle_readback();
   const auto temperature =
       brake ? std::optional<double>(brake->temperature_c) : std::optional<double>();
@@ -315,9 +390,17 @@ void CanopenBench::check_cycle(const CycleRecord& record) noexcept {
 }
 
 void CanopenBench::on_heartbeat_frame(const can::Frame& frame) noexcept {
-  const auto hb = canopen::decode_heartbeat(frame);
-  if (!hb || !heartbeats_.watches(hb->node)) return;
-  heartbeats_.seen(hb->node, now(), Clock::now(), hb->state);
+  const auto processed = Clock::now();
+  heartbeats_.frame(frame, processed);
+  auto hb = canopen::decode_heartbeat(frame);
+  if (hb && guards_.guards(hb->node)) {
+    // A guarded node's answers (and its boot-up) stand for its heartbeat below.
+    const auto answer = guards_.on_frame(frame, processed);
+    if (!answer && hb->state != canopen::NmtState::boot_up) return;
+  } else {
+    if (!hb || !heartbeats_.watches(hb->node)) return;
+    heartbeats_.seen(hb->node, now(), processed, hb->state);
+  }
   for (auto* d : canopen_devices()) {
     if (d->node() != hb->node) continue;
     if (hb->state == canopen::NmtState::boot_up)
@@ -453,7 +536,11 @@ void CanopenBench::clear_fault() {
       throw std::runtime_error("cannot clear the fault: the heartbeat of node " +
                                std::to_string(node) + " (" + node_name(node) +
                                ") is still missing");
+    if (const auto* g = guards_.guard(node); g && g->silence(Clock::now()) > g->life_time())
+      throw std::runtime_error("cannot clear the fault: node " + std::to_string(node) + " (" +
+                               node_name(node) + ") does not answer node guarding");
   }
+  guards_.start(Clock::now());
   try {
     brake_->reset_after_fault();
   } catch (const std::exception& e) {
@@ -731,10 +818,19 @@ AcquisitionStats CanopenBench::acquisition_stats() const {
     s.brake_status_word = brake->status.raw;
     s.brake_alarm = brake->status.alarm ? brake->alarm_text : std::string();
   }
-  for (const auto& n : heartbeats_.nodes(now())) {
+  for (const auto& n : heartbeats_.nodes()) {
     s.nodes.push_back({n.node, n.state ? std::string(canopen::to_string(*n.state)) : std::string(),
                        n.count > 0 ? n.age_s : -1.0, n.count});
   }
+  for (const auto* g : guards_.all()) {
+    s.nodes.push_back(
+        {g->node(), g->state() ? std::string(canopen::to_string(*g->state())) : "",
+         g->answers() > 0 ? std::chrono::duration<double>(g->silence(Clock::now())).count() : -1.0,
+         g->answers(), "node guarding"});
+  }
+  s.cycles_waited_for_devices = c.cycles_waited_for_devices;
+  s.longest_device_wait_s = c.longest_device_wait_s;
+  s.late_devices = engine_->late_devices();
   s.drive_heartbeats = heartbeats_.count(drive_->node());
   s.drive_heartbeat_gap_max_s = heartbeats_.largest_gap(drive_->node());
   const auto& lateness = engine_->lateness();

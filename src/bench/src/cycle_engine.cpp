@@ -1,5 +1,7 @@
 #include "wavebench/bench/cycle_engine.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <algorithm>
 #include <stdexcept>
 
@@ -49,6 +51,14 @@ void CycleEngine::start(CycleCheck check) {
   lateness_ = {};
   open_ = false;
   running_ = true;
+  mute_ = 0;
+  late_devices_.clear();
+  last_warning_ = {};
+  clock_.on_late_answers({[this] { return awaits_answers(); },
+                          [this] {
+                            mute_ |= expected_ & ~arrived_;
+                            awaited_ = 0;
+                          }});
   clock_.start([this](std::uint64_t index, std::int64_t time_ns) { on_sync(index, time_ns); });
 }
 
@@ -80,11 +90,44 @@ void CycleEngine::on_sync(std::uint64_t index, std::int64_t time_ns) {
   record_.drive.status_valid = false;
   record_.drive.following_error_valid = false;
   arrived_ = 0;
+  awaited_ = 0;
   open_ = true;
   for (auto* device : canopen_) device->on_sync(index);
 }
 
+bool CycleEngine::awaits_answers() noexcept {
+  const std::uint32_t missing = expected_ & ~arrived_ & ~mute_;
+  if (!open_ || missing == 0) return false;
+  awaited_ = missing;  // named as late once their answers are in
+  return true;
+}
+
+void CycleEngine::note_late(std::uint32_t missing) noexcept {
+  bool added = false;
+  for (const auto& source : sources_) {
+    if ((missing & source.bit) == 0) continue;
+    const auto name = source.device->describe();
+    if (std::find(late_devices_.begin(), late_devices_.end(), name) != late_devices_.end())
+      continue;
+    late_devices_.push_back(name);
+    added = true;
+  }
+  // One warning per start, another only for a newly late device and at most once a minute.
+  const auto now = std::chrono::steady_clock::now();
+  if (!added || (last_warning_ != std::chrono::steady_clock::time_point{} &&
+                 now - last_warning_ < std::chrono::minutes(1)))
+    return;
+  last_warning_ = now;
+  std::string names;
+  for (const auto& n : late_devices_) names += (names.empty() ? "" : ", ") + n;
+  spdlog::warn(
+      "slower than the SYNC rate: {}; the simulated clock waited for their answers before the "
+      "next SYNC (acquisition_stats: cycles_waited_for_devices)",
+      names);
+}
+
 void CycleEngine::on_frame(const FrameSource& source, const can::Frame& frame) noexcept {
+  mute_ &= ~source.bit;  // it speaks: waited for again
   if (!open_ || !clock_.received_after_sync(frame) || (arrived_ & source.bit) != 0 ||
       !source.device->on_pdo(source.tpdo, frame, record_)) {
     ++stats_.late_frames;
@@ -92,6 +135,8 @@ void CycleEngine::on_frame(const FrameSource& source, const can::Frame& frame) n
   }
   arrived_ |= source.bit;
   if (arrived_ == expected_) {
+    if (awaited_ != 0) note_late(awaited_);
+    awaited_ = 0;
     close();
     clock_.cycle_complete();
   }

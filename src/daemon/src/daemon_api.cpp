@@ -84,7 +84,8 @@ nlohmann::json nodes_json(const std::vector<bench::AcquisitionStats::NodeHeartbe
          {"nmt_state", n.nmt_state.empty() ? nlohmann::json(nullptr) : nlohmann::json(n.nmt_state)},
          {"heartbeat_age_s",
           n.heartbeat_age_s >= 0 ? nlohmann::json(n.heartbeat_age_s) : nlohmann::json(nullptr)},
-         {"heartbeats", n.heartbeats}});
+         {"heartbeats", n.heartbeats},
+         {"supervision", n.supervision}});
   }
   return out;
 }
@@ -97,6 +98,9 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a) {
           {"sync_skipped", a.sync_skipped},
           {"bus_load", a.bus_load},
           {"cycles_timed_out", a.cycles_timed_out},
+          {"cycles_waited_for_devices", a.cycles_waited_for_devices},
+          {"longest_device_wait_s", a.longest_device_wait_s},
+          {"late_devices", a.late_devices},
           {"late_frames", a.late_frames},
           {"sync_lateness_p50_s", a.sync_lateness_p50_s},
           {"sync_lateness_p99_s", a.sync_lateness_p99_s},

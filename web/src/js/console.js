@@ -77,6 +77,7 @@ function showBench(s) {
       .map((x) => (x === undefined || x === null ? '—' : `${(x * 1e6).toFixed(0)} µs`)).join(' / ')],
     ['SYNC late / skipped', `${fmt(a.sync_late)} / ${fmt(a.sync_skipped)}`],
     ['missed cycles (timed out)', fmt(a.cycles_timed_out)],
+    ['cycles waited for slow devices (longest)', a.cycles_waited_for_devices ? `${a.cycles_waited_for_devices} (${(1e3 * a.longest_device_wait_s).toFixed(0)} ms)` : fmt(a.cycles_waited_for_devices)],
     ['incomplete samples', fmt(a.incomplete_samples)],
     ['bus load', a.bus_load === undefined ? '—' : `${(100 * a.bus_load).toFixed(1)} %`],
     ['samples', fmt(a.samples)],
@@ -96,14 +97,14 @@ function showBench(s) {
     ['brake current / torque', `${fmt(l.brake_current_a)} A / ${fmt(l.brake_torque_nm)} N·m`],
   );
   table($('acquisition'), rows);
-  // NMT state and heartbeat age per node, from the bench's heartbeat watch.
+  // NMT state and heartbeat (or node-guarding answer) age per node, from the bench's watches.
   const nodes = new Map((a.nodes || []).map((n) => [n.node, n]));
   table($('devices'), (s.devices || []).map((d) => {
     const n = nodes.get(d.node) || {};
     const drive = d.node !== null && d.node !== undefined && a.drive_state && (d.commands || []).length
       ? a.drive_state : null;
     const age = n.heartbeat_age_s === null || n.heartbeat_age_s === undefined ? null
-      : `heartbeat ${fmt(n.heartbeat_age_s, 2)} s ago`;
+      : `${n.supervision === 'node guarding' ? 'guard answer' : 'heartbeat'} ${fmt(n.heartbeat_age_s, 2)} s ago`;
     const state = [n.nmt_state, drive, age]
       .filter((x) => x).join(' · ');
     return [`${d.name}${d.node !== null && d.node !== undefined ? ` (node ${d.node})` : ''}`,

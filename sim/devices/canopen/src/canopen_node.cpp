@@ -58,9 +58,17 @@ void CanopenNode::add_communication_objects(const NodeIdentity& identity) {
                  identity.software_version);
   od_.add_value<std::uint32_t>(0x1014, 0, "COB-ID EMCY", DataType::kUnsigned32, Access::kReadWrite,
                                0x80U + node_id_);
-  auto& heartbeat = od_.add_value<std::uint16_t>(0x1017, 0, "producer heartbeat time",
-                                                 DataType::kUnsigned16, Access::kReadWrite, 0);
-  heartbeat.after_write = [this] { restart_heartbeat(now_); };
+  if (identity.heartbeat_producer) {
+    auto& heartbeat = od_.add_value<std::uint16_t>(0x1017, 0, "producer heartbeat time",
+                                                   DataType::kUnsigned16, Access::kReadWrite, 0);
+    heartbeat.after_write = [this] { restart_heartbeat(now_); };
+  } else {
+    // Node guarding instead (CiA 301 §7.2.8.3.2.1); the device does not guard its master.
+    od_.add_value<std::uint16_t>(0x100C, 0, "guard time", DataType::kUnsigned16, Access::kReadWrite,
+                                 0);
+    od_.add_value<std::uint8_t>(0x100D, 0, "life time factor", DataType::kUnsigned8,
+                                Access::kReadWrite, 0);
+  }
   od_.add_value<std::uint8_t>(0x1018, 0, "identity: highest sub-index", DataType::kUnsigned8,
                               Access::kConst, identity.has_serial_number ? 4 : 3);
   od_.add_value<std::uint32_t>(0x1018, 1, "vendor-ID", DataType::kUnsigned32, Access::kReadOnly,
@@ -237,7 +245,19 @@ std::uint32_t CanopenNode::sync_cob_id() const {
 }
 
 void CanopenNode::send(std::uint32_t cob_id, std::span<const std::uint8_t> data) {
-  if (sink_) sink_(cob_id, data);
+  if (sink_ && !silent_) sink_(cob_id, data);
+}
+
+std::uint16_t CanopenNode::heartbeat_period_ms() const {
+  return od_.find(0x1017, 0) != nullptr ? od_.get<std::uint16_t>(0x1017, 0) : 0;
+}
+
+void CanopenNode::receive_remote(std::uint32_t cob_id) {
+  if (cob_id != 0x700U + node_id_ || nmt_state_ == NmtState::kInitialising) return;
+  const std::array<std::uint8_t, 1> answer{static_cast<std::uint8_t>(
+      static_cast<std::uint8_t>(nmt_state_) | (guard_toggle_ ? 0x80 : 0))};
+  send(0x700U + node_id_, answer);
+  guard_toggle_ = !guard_toggle_;
 }
 
 void CanopenNode::boot(double now) {
@@ -253,11 +273,12 @@ void CanopenNode::enter_preoperational_after_reset(double now) {
   const std::array<std::uint8_t, 1> bootup{0x00};
   send(0x700U + node_id_, bootup);
   nmt_state_ = NmtState::kPreOperational;
+  guard_toggle_ = false;
   restart_heartbeat(now);
 }
 
 void CanopenNode::restart_heartbeat(double now) {
-  const auto period_ms = od_.get<std::uint16_t>(0x1017, 0);
+  const auto period_ms = heartbeat_period_ms();
   next_heartbeat_ = now + period_ms * 1e-3;
 }
 
@@ -270,7 +291,7 @@ void CanopenNode::advance_to(double now) {
   if (now < now_) return;
   now_ = now;
   if (nmt_state_ == NmtState::kInitialising) return;
-  const auto period_ms = od_.get<std::uint16_t>(0x1017, 0);
+  const auto period_ms = heartbeat_period_ms();
   if (period_ms != 0) {
     const double period = period_ms * 1e-3;
     // A tolerance of a microsecond keeps float drift from skipping a beat.

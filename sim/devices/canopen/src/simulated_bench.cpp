@@ -84,9 +84,24 @@ void SimulatedBench::follow_real_time() {
   if (lag > 0) advance(lag);
 }
 
+void SimulatedBench::set_silent(bool silent) noexcept {
+  drive_.set_silent(silent);
+  encoder_.set_silent(silent);
+  torque_sensor_.set_silent(silent);
+  if (input_encoder_) input_encoder_->set_silent(silent);
+}
+
 void SimulatedBench::handle(const can::Frame& frame) noexcept {
-  if (frame.error || frame.rtr || frame.extended) return;
+  if (frame.error || frame.extended) return;
   try {
+    if (frame.rtr) {
+      // Remote frames are node-guarding requests; they do not move simulated time.
+      drive_.receive_remote(frame.id);
+      encoder_.receive_remote(frame.id);
+      torque_sensor_.receive_remote(frame.id);
+      if (input_encoder_) input_encoder_->receive_remote(frame.id);
+      return;
+    }
     if (config_.clock == BenchClock::kRealTime) follow_real_time();
     if (config_.clock == BenchClock::kSyncDriven && frame.id == drive_.sync_cob_id()) {
       const auto us = drive_.od().get<std::uint32_t>(0x1006, 0);

@@ -138,6 +138,7 @@ void read_drive(YamlSection& s, ServoDriveConfig& d) {
   set_if(s.optional_integer("following_error_window", 0, 0xFFFFFFFFLL), d.following_error_window);
   set_if(s.optional_integer("following_error_timeout_ms", 0, 65535), d.following_error_timeout_ms);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), d.identity.serial_number);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) d.identity.heartbeat_producer = *v;
   s.finish();
 }
 
@@ -151,6 +152,7 @@ void read_encoder(YamlSection& s, EncoderConfig& e) {
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), e.seed);
   set_if(s.optional_integer("serial_number", 0, 0xFFFFFFFFLL), e.identity.serial_number);
   read_fixed_tpdos(s, e.fixed_tpdos);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) e.identity.heartbeat_producer = *v;
   s.finish();
 }
 
@@ -191,6 +193,7 @@ void read_torque_sensor(YamlSection& s, TorqueSensorConfig& t) {
   set_if(s.optional_number("offset_nm", -1e6, 1e6), t.offset_nm);
   set_if(s.optional_integer("seed", 0, std::numeric_limits<long long>::max()), t.seed);
   read_fixed_tpdos(s, t.fixed_tpdos);
+  if (const auto v = s.optional_boolean("heartbeat_producer")) t.identity.heartbeat_producer = *v;
   s.finish();
 }
 

@@ -38,8 +38,9 @@ struct UsedObject {
 };
 
 // The CiA 301 objects every node of the bench is set up through (device type, SYNC period,
-// heartbeat, identity, TPDO1 with one mapped object), written once for every device's list.
-// The TPDO parameters may be read-only: the bench then uses the mapping it reads back.
+// heartbeat or else node guarding, identity, TPDO1 with one mapped object), written once for
+// every device's list. The TPDO parameters may be read-only: the bench then uses the mapping it
+// reads back.
 inline constexpr std::size_t kNodeObjectCount = 11;
 constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
   using enum UsedAccess;
@@ -49,6 +50,7 @@ constexpr std::array<UsedObject, kNodeObjectCount> node_objects() {
       {0x1000, 0, "device type", dt::kUnsigned32, 0, kRead},
       {0x1006, 0, "communication cycle period", dt::kUnsigned32, 0, kReadWrite, kNone,
        "not written: the device answers every SYNC as it comes"},
+      // Optional: a node without a heartbeat producer is node-guarded (CiA 301 §7.2.8.3.2).
       {0x1017, 0, "producer heartbeat time", dt::kUnsigned16, 0, kReadWrite, kNone,
        "no heartbeat producer: the node is watched by node guarding (0x100C/0x100D)"},
       {0x1018, 1, "vendor-ID", dt::kUnsigned32, 0, kRead},

@@ -84,15 +84,22 @@ struct AcquisitionStats {
   std::optional<double> brake_coil_temperature_c;
   std::optional<std::uint16_t> brake_status_word;
   std::string brake_alarm;
-  // Each CANopen node as its heartbeats show it: NMT state of the last one ("" before the
-  // first), bench time since it (-1 before the first) and how many arrived.
+  // Each CANopen node as its heartbeats (or node-guarding answers) show it: NMT state of the
+  // last one ("" before the first), wall time since it (-1 before the first), how many
+  // arrived, and how the node is supervised.
   struct NodeHeartbeat {
     std::uint8_t node = 0;
     std::string nmt_state;
     double heartbeat_age_s = -1;
     std::uint64_t heartbeats = 0;
+    std::string supervision = "heartbeat";  // or "node guarding"
   };
   std::vector<NodeHeartbeat> nodes;
+  // Simulated clock: cycles whose next SYNC waited for a device slower than the configured
+  // rate, the longest wait [s], and those devices.
+  std::uint64_t cycles_waited_for_devices = 0;
+  double longest_device_wait_s = 0;
+  std::vector<std::string> late_devices;
 };
 
 // A device of the bench as the API lists it: its name, its CANopen node (none for the Modbus

@@ -26,6 +26,16 @@ namespace wavebench::bench {
 
 enum class BenchClockKind { kReal, kSimulated };
 
+// Node guarding (CiA 301 §7.2.8.3.2.1) of a device without a heartbeat producer: the bench
+// guards a node whose 0x1017 does not exist or is read-only, and the nodes named here whatever
+// they have. Loss: no answer for guard time x life time factor (bounded by
+// safety.heartbeat_timeout), or a toggle that does not alternate.
+struct NodeGuardingSettings {
+  double guard_time_s = 0.1;          // written to 0x100C, and the request period
+  std::uint8_t life_time_factor = 3;  // written to 0x100D
+  std::vector<std::uint8_t> nodes;    // guarded even when they have 0x1017
+};
+
 struct CanSettings {
   std::string interface = "inproc";  // "inproc": the in-process simulated bench's virtual bus
   double bitrate = 1e6;              // [bit/s] for the bus-load estimate
@@ -38,6 +48,7 @@ struct CanSettings {
   double cycle_timeout_s = 0.05;  // simulated clock: real time to wait for a cycle's PDOs
   // Bench time after a trip's quick stop for the drive's statusword to show it; NMT stop after.
   double quick_stop_timeout_s = 0.05;
+  NodeGuardingSettings node_guarding;  // `can.node_guarding`
 };
 
 // 0x1018 as the config expects it (`identity:` of a device); unset sub-indices are not compared.

@@ -8,14 +8,17 @@
 //   cycle engine   SYNC from the injected clock (real or simulated, cycle_clock.hpp), the
 //                  devices' TPDOs into one sample per cycle, observers (cycle_engine.hpp)
 //   this class     the lifecycle (bench_lifecycle.hpp), the blocking calls procedures make, and
-//                  safety: heartbeats (heartbeat_watch.hpp), EMCY, limits, the brake's link, and
-//                  the trip path that never waits (quick_stop_watch.hpp)
+//                  safety: heartbeats (heartbeat_watch.hpp) or node guarding of a device without
+//                  a heartbeat producer (node_guard_watch.hpp), both on the wall clock, EMCY,
+//                  limits, the brake's link, and the trip path that never waits
+//                  (quick_stop_watch.hpp)
 //
 // The brake controller's watchdog and physics count bench time on the simulated clock, so the
 // brake device beats in bench time there (powder_brake_device.hpp).
 
 #include <atomic>
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <functional>
 #include <memory>
@@ -30,6 +33,7 @@
 #include "wavebench/bench/cycle_clock.hpp"
 #include "wavebench/bench/cycle_engine.hpp"
 #include "wavebench/bench/heartbeat_watch.hpp"
+#include "wavebench/bench/node_guard_watch.hpp"
 #include "wavebench/bench/powder_brake_device.hpp"
 #include "wavebench/bench/quick_stop_watch.hpp"
 #include "wavebench/bench/safety_limits_check.hpp"
@@ -89,6 +93,11 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::vector<std::string> absent_channels() const override {
     return drive_->drive_channels().absent_names();
   }
+  // The nodes supervised by node guarding instead of heartbeats (no producer, or the config's
+  // can.node_guarding.nodes), as found at the last connect.
+  const NodeGuardWatch& node_guards() const noexcept { return guards_; }
+  // The devices a SYNC waited for (simulated clock: slower than the configured rate).
+  const std::vector<std::string>& late_devices() const noexcept { return engine_->late_devices(); }
 
  private:
   void on_brake_event(const modbus::BrakeEvent& event) noexcept override;
@@ -99,6 +108,10 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   void stop_acquisition() noexcept;
   void check_cycle(const CycleRecord& record) noexcept;
   void on_heartbeat_frame(const can::Frame& frame) noexcept;
+  // Heartbeats and node guarding, judged on the wall clock: every cycle and on a timer.
+  void watch_liveness() noexcept;
+  void check_liveness() noexcept;
+  void guard_node(CanopenDevice& device, canopen::SdoClient& sdo, const std::string& why);
   std::vector<CanopenDevice*> canopen_devices() const;
   std::vector<canopen::NodeId> all_nodes() const;
   std::string node_name(canopen::NodeId node) const;
@@ -130,6 +143,8 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   can::CanBus& bus_;
   boost::asio::io_context& io_;
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
+  boost::asio::steady_timer liveness_timer_{io_};
+  std::chrono::steady_clock::time_point last_liveness_check_{};
 
   std::unique_ptr<canopen::Master> master_;
   std::unique_ptr<CycleClock> clock_;
@@ -140,6 +155,7 @@ class CanopenBench final : public Bench, private modbus::BrakeEventSink {
   std::unique_ptr<PowderBrakeDevice> brake_;
   SafetyLimitsCheck limits_check_;
   HeartbeatWatch heartbeats_;
+  NodeGuardWatch guards_;
   std::vector<can::CanBus::Subscription> subscriptions_;
   double bus_load_ = 0;
 

@@ -4,9 +4,13 @@
 //   RealSyncClock       SYNC on absolute deadlines of the steady clock (canopen::SyncProducer);
 //                       bench time is real time since start; a cycle closes when all its PDOs
 //                       arrived or at the next SYNC.
-//   SimulatedSyncClock  the next SYNC goes out as soon as the cycle's PDOs arrived (or after a
-//                       real-time timeout, the missing ones counted): bench time is
-//                       SYNC index × period, and a run takes a fraction of its real duration.
+//   SimulatedSyncClock  the next SYNC goes out as soon as the cycle's PDOs arrived: bench time
+//                       is SYNC index × period, and a run takes a fraction of its real duration.
+//                       After a real-time cycle timeout the next SYNC still waits for answers
+//                       that are coming (a device slower than the rate: SYNCs must not queue up
+//                       in it), up to a bound (the heartbeat timeout of real time) after which
+//                       the cycle closes incomplete; a device that did not answer by then is
+//                       not waited for again until it answers. Every wait is counted.
 
 #include <chrono>
 #include <cstdint>
@@ -43,11 +47,25 @@ class CycleClock {
   }
   // Whether bench time is paced by the devices rather than by real time.
   virtual bool simulated() const noexcept = 0;
+  // Simulated clock, after a cycle's timeout: `awaited()` says whether answers of the open
+  // cycle are still coming (the next SYNC waits for them); `given_up()` runs when the bound
+  // closed the cycle without them.
+  struct LateAnswers {
+    std::function<bool()> awaited;
+    std::function<void()> given_up;
+  };
+  virtual void on_late_answers(LateAnswers hooks) { (void)hooks; }
 
   struct Statistics {
     std::uint64_t late = 0;              // the SYNC producer woke late (real clock)
     std::uint64_t skipped = 0;           // whole periods skipped (real clock)
-    std::uint64_t cycles_timed_out = 0;  // a cycle closed by its real-time timeout (simulated)
+    std::uint64_t cycles_timed_out = 0;  // a cycle past its real-time timeout (simulated)
+    // Simulated: cycles whose next SYNC waited past the timeout for a device's late answers
+    // (the device is slower than the configured rate), the longest such wait, and the cycles
+    // the bound closed without them.
+    std::uint64_t cycles_waited_for_devices = 0;
+    double longest_device_wait_s = 0;
+    std::uint64_t cycles_given_up = 0;
   };
   virtual Statistics statistics() const noexcept = 0;
 
@@ -81,29 +99,38 @@ class RealSyncClock final : public CycleClock {
 
 class SimulatedSyncClock final : public CycleClock {
  public:
-  SimulatedSyncClock(can::CanBus& bus, double period_s, std::chrono::milliseconds cycle_timeout);
+  // `wait_bound`: real time after a SYNC past which late answers are not waited for.
+  SimulatedSyncClock(can::CanBus& bus, double period_s, std::chrono::milliseconds cycle_timeout,
+                     std::chrono::milliseconds wait_bound = std::chrono::milliseconds(1000));
   ~SimulatedSyncClock() override;
 
   void reset() noexcept override;
   void start(SyncHandler on_sync) override;
   void stop() noexcept override;
   double now() const noexcept override { return static_cast<double>(index_) * period_s_; }
-  void cycle_complete() noexcept override { send_sync(); }
+  void cycle_complete() noexcept override;
   bool simulated() const noexcept override { return true; }
-  Statistics statistics() const noexcept override { return {0, 0, timed_out_}; }
+  void on_late_answers(LateAnswers hooks) override { late_ = std::move(hooks); }
+  Statistics statistics() const noexcept override { return stats_; }
 
  private:
   void send_sync() noexcept;
+  void arm(std::chrono::steady_clock::duration after) noexcept;
+  void on_timer() noexcept;
 
   can::CanBus& bus_;
   double period_s_;
   std::chrono::milliseconds cycle_timeout_;
+  std::chrono::milliseconds wait_bound_;
+  LateAnswers late_;
+  std::chrono::steady_clock::time_point sync_sent_{};
+  bool waiting_ = false;  // past the cycle timeout, for answers that are coming
+  Statistics stats_;
   boost::asio::steady_timer timer_;
   SyncHandler on_sync_;
   bool running_ = false;
   std::uint64_t index_ = 0;
   std::uint64_t generation_ = 0;
-  std::uint64_t timed_out_ = 0;
   std::shared_ptr<bool> alive_ = std::make_shared<bool>(true);
 };
 

@@ -2,15 +2,19 @@
 // The bench's cycle (bench.md §1): on every SYNC of the injected clock a cycle opens; the TPDOs
 // of the bench's CANopen devices that follow it are handed to their devices, which write their
 // channels into the cycle's record; the cycle closes when every expected frame arrived (the
-// simulated clock then sends the next SYNC at once) or when the next SYNC opens a new one. At
+// simulated clock then sends the next SYNC at once) or when the next SYNC opens a new one. On
+// the simulated clock the engine tells the clock which late answers are worth waiting for: those
+// of devices that answered since the last wait gave up on them. At
 // its end the other devices (the Modbus brake) add their latest values, the sample goes to the
 // observers, then to the bench's own check (safety). A channel that did not arrive keeps its
 // flag clear and is never filled in.
 //
 // Runs on the bench thread; never blocks (observers must not either).
 
+#include <chrono>
 #include <cstdint>
 #include <functional>
+#include <string>
 #include <vector>
 
 #include "wavebench/bench/bench_device.hpp"
@@ -55,6 +59,9 @@ class CycleEngine {
   CycleClock& clock() noexcept { return clock_; }
   // Payload bits per cycle on the bus (SYNC and every TPDO), for the bus-load estimate.
   double bits_per_cycle() const;
+  // Simulated clock: the devices whose late answers a SYNC waited for (and got) since start(),
+  // by name.
+  const std::vector<std::string>& late_devices() const noexcept { return late_devices_; }
 
  private:
   struct FrameSource {
@@ -65,6 +72,9 @@ class CycleEngine {
   void on_sync(std::uint64_t index, std::int64_t time_ns);
   void on_frame(const FrameSource& source, const can::Frame& frame) noexcept;
   void close() noexcept;
+  // After the cycle timeout: answers still coming from devices not known to be mute.
+  bool awaits_answers() noexcept;
+  void note_late(std::uint32_t missing) noexcept;
 
   canopen::Master& master_;
   CycleClock& clock_;
@@ -75,6 +85,10 @@ class CycleEngine {
   CycleCheck check_;
   std::uint32_t expected_ = 0;
   std::uint32_t arrived_ = 0;
+  std::uint32_t mute_ = 0;     // sources a wait gave up on, until they send again
+  std::uint32_t awaited_ = 0;  // sources the open cycle waits for past its timeout
+  std::vector<std::string> late_devices_;
+  std::chrono::steady_clock::time_point last_warning_{};
   bool open_ = false;
   bool running_ = false;
   CycleRecord record_;

@@ -33,6 +33,9 @@ struct NodeIdentity {
   std::uint32_t revision = 0;
   std::uint32_t serial_number = 0;
   bool has_serial_number = true;  // 0x1018:4 is optional in CiA 301 (sub0 = 3 without it)
+  // false: a device without a heartbeat producer (no 0x1017 at all); it is supervised by node
+  // guarding (0x100C guard time, 0x100D life time factor, answers to remote frames on 0x700+id).
+  bool heartbeat_producer = true;
 };
 
 // A frame leaving the node: COB-ID (11 bit) and 0..8 data bytes.
@@ -67,6 +70,12 @@ class CanopenNode {
   void boot(double now);
   // A frame from the bus at time `now` [s]. The node ignores frames that are not for it.
   void receive(std::uint32_t cob_id, std::span<const std::uint8_t> data, double now);
+  // A remote frame from the bus: on 0x700 + id it is a node-guarding request, answered with
+  // the NMT state and the toggle bit (0 first after boot-up or reset, then alternating).
+  void receive_remote(std::uint32_t cob_id);
+  // A silent node sends nothing at all (a cut cable, a dead device): for tests of its loss.
+  void set_silent(bool silent) noexcept { silent_ = silent; }
+  bool silent() const noexcept { return silent_; }
   // Time-driven work up to `now`: heartbeat, event-timer TPDOs, SDO timeouts.
   void advance_to(double now);
 
@@ -121,6 +130,7 @@ class CanopenNode {
   std::uint32_t check_mapping_count(bool transmit, int number, std::uint8_t count) const;
   std::vector<PdoMappingEntry> mapping(bool transmit, int number) const;
   void send_heartbeat();
+  std::uint16_t heartbeat_period_ms() const;  // 0x1017, 0 without one
   void restart_heartbeat(double now);
 
   std::uint8_t node_id_;
@@ -130,6 +140,8 @@ class CanopenNode {
   NmtState nmt_state_ = NmtState::kInitialising;
   double now_ = 0;
   double next_heartbeat_ = 0;
+  bool guard_toggle_ = false;
+  bool silent_ = false;
   std::array<PdoRuntime, 4> tpdo_{};
   std::array<PdoRuntime, 4> rpdo_{};
 };

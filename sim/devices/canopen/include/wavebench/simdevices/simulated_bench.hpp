@@ -64,6 +64,8 @@ class SimulatedBench {
   TorqueSensor& torque_sensor() noexcept { return torque_sensor_; }
   SimulatedBenchPlant& plant() noexcept { return plant_; }
   const SimulatedBenchConfig& config() const noexcept { return config_; }
+  // Every node silent (true) or speaking again (false): a cut bus as the master sees it.
+  void set_silent(bool silent) noexcept;
   std::uint64_t frames_sent() const noexcept { return frames_sent_; }
   std::uint64_t send_errors() const noexcept { return send_errors_; }
   // Real-time clock only: simulated time the bench gave up because it could not keep up [s].

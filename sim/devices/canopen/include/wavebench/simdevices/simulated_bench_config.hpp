@@ -44,6 +44,10 @@
 // SYNC); an empty list leaves it disabled (COB-ID bit 31 set). A TPDO not listed stays
 // remappable, and so do the RPDOs: the bench maps the drive's RPDO1 with the controlword for its
 // quick stop. An object the device does not have is refused when the bench is built.
+// Every device section also takes `heartbeat_producer: false` (default true): a device with no
+// heartbeat producer, no 0x1017 in its object dictionary, that a master must supervise by node
+// guarding (it has 0x100C guard time and 0x100D life time factor, read-write, and answers remote
+// frames on 0x700 + node id with its NMT state and the toggle bit).
 //
 // The gear's "true" parameters are not here: the CLI takes them from a twin-case file.
 
