@@ -340,3 +340,46 @@ DefaultValue=0x60640020
 
 }  // namespace
 }  // namespace wavebench::canopen
+
+namespace wavebench::canopen {
+namespace {
+
+// An optional object that the EDS describes otherwise than the bench would use it (a read-only
+// 0x1017, a 0x60F4 that cannot be mapped) is one the bench does without: no refusal. The same
+// disagreement on a required object stays one.
+TEST(EdsUsedObjects, AnOptionalObjectDescribedOtherwiseIsNoProblem) {
+  const auto eds = Eds::parse(R"([1017]
+ParameterName=Producer heartbeat time
+DataType=0x0006
+AccessType=ro
+DefaultValue=0
+
+[60F4]
+ParameterName=Following error actual value
+DataType=0x0004
+AccessType=ro
+PDOMapping=0
+
+[6064]
+ParameterName=Position actual value
+DataType=0x0004
+AccessType=ro
+PDOMapping=0
+)",
+                              "optional.eds");
+  const UsedObject used[] = {
+      {0x1017, 0, "producer heartbeat time", datatype::kUnsigned16, 0, UsedAccess::kReadWrite,
+       UsedInPdo::kNone, "node guarding"},
+      {0x60F4, 0, "following error", datatype::kInteger32, 0, UsedAccess::kRead, UsedInPdo::kTpdo,
+       "no following-error channel"},
+      {0x6064, 0, "position actual value", datatype::kInteger32, 0, UsedAccess::kRead,
+       UsedInPdo::kTpdo},
+  };
+  const auto problems = check_against_eds(used, eds);
+  ASSERT_EQ(problems.size(), 1U);
+  EXPECT_NE(problems[0].find("0x6064:0 position actual value: EDS PDOMapping 0"), std::string::npos)
+      << problems[0];
+}
+
+}  // namespace
+}  // namespace wavebench::canopen

@@ -8,6 +8,20 @@ std::string describe(const UsedObject& object) {
   return fmt::format("0x{:04X}:{} {}", object.index, object.sub, object.name);
 }
 
+namespace {
+
+bool agrees(const UsedObject& u, const EdsObject& o) {
+  const bool type_ok =
+      o.data_type == u.data_type || (u.alt_data_type != 0 && o.data_type == u.alt_data_type);
+  const bool need_read = u.access != UsedAccess::kWrite || u.pdo == UsedInPdo::kTpdo;
+  const bool need_write = u.access != UsedAccess::kRead || u.pdo == UsedInPdo::kRpdo;
+  const bool access_ok = (!need_read || readable(o.access)) &&
+                         (!need_write || writable(o.access) || u.may_be_read_only);
+  return type_ok && access_ok && (u.pdo == UsedInPdo::kNone || o.pdo_mapping);
+}
+
+}  // namespace
+
 std::vector<std::string> check_against_eds(std::span<const UsedObject> used, const Eds& eds) {
   std::vector<std::string> problems;
   for (const auto& u : used) {
@@ -20,6 +34,9 @@ std::vector<std::string> check_against_eds(std::span<const UsedObject> used, con
                          (why ? ": in the EDS but unreadable: " + *why : ": not in the EDS"));
       continue;
     }
+    // An optional object the EDS describes otherwise (read-only 0x1017, 0x60F4 not mappable)
+    // is one the bench does without, as when the device lacks it: not a refusal.
+    if (u.optional() && !agrees(u, *o)) continue;
     if (o->data_type != u.data_type && (u.alt_data_type == 0 || o->data_type != u.alt_data_type)) {
       problems.push_back(
           fmt::format("{}: EDS DataType {}, expected {}{}", describe(u),

@@ -83,8 +83,8 @@ std::string describe(const UsedObject& object);  // "0x6041:0 statusword"
 
 // What `eds` says against each used object: a missing required object, another data type, an
 // access that does not allow the use (but `ro`/`const` on one marked may_be_read_only), not
-// PDO-mappable where it goes in a PDO. Empty: agreed. An optional object missing from the EDS
-// is not a problem. An object the EDS has a section for but could not read (Eds::problem) is
+// PDO-mappable where it goes in a PDO. Empty: agreed. An optional object missing from the EDS,
+// or described otherwise than the bench uses it, is not a problem (the bench does without it). An object the EDS has a section for but could not read (Eds::problem) is
 // "in the EDS but unreadable: <why>".
 std::vector<std::string> check_against_eds(std::span<const UsedObject> used, const Eds& eds);
 
