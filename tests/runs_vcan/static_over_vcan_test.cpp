@@ -21,23 +21,18 @@
 #include <string>
 #include <thread>
 
-#include "loopback_port.hpp"
+#include "simbench_process.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
-extern char** environ;
-
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 constexpr const char* kInterface = "vcan1";
-
-using wavebench::testing::free_tcp_port;
-using wavebench::testing::tcp_port_accepts;
 
 wavebench::runs::RunRequest four_position_static(const std::string& config_text) {
   wavebench::runs::RunRequest request;
@@ -69,44 +64,16 @@ class StaticOverVcan : public ::testing::Test {
       GTEST_SKIP() << kInterface << " is absent (runs in the vcan VM)";
     root_ = fs::temp_directory_path() / ("wavebench-vcan-static-" + std::to_string(::getpid()));
     fs::remove_all(root_);
-    port_ = free_tcp_port();
-    ASSERT_GT(port_, 0);
-    const std::string exe = std::string(WAVEBENCH_BINARY_DIR) + "/src/cli/wavebench";
     const std::string config = std::string(WAVEBENCH_SOURCE_DIR) + "/configs/benches/sim.yaml";
-    std::vector<std::string> args{exe,
-                                  "simbench",
-                                  "--can",
-                                  kInterface,
-                                  "--clock",
-                                  "sync",
-                                  "--bench-config",
-                                  config,
-                                  "--modbus",
-                                  "tcp:127.0.0.1:" + std::to_string(port_),
-                                  "--duration",
-                                  "1800"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ASSERT_EQ(posix_spawn(&pid_, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0) << exe;
-    // Emulated and loaded: wait for the brake port generously; the nodes boot with it.
-    const auto deadline = std::chrono::steady_clock::now() + 120s;
-    while (!tcp_port_accepts(port_) && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(100ms);
-    ASSERT_TRUE(tcp_port_accepts(port_)) << "simbench's brake port " << port_ << " never opened";
+    const auto error = simbench_.start(kInterface, config);
+    ASSERT_TRUE(error.empty()) << error;
+    port_ = simbench_.port();
   }
-  void TearDown() override {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      int status = 0;
-      ::waitpid(pid_, &status, 0);
-    }
-    fs::remove_all(root_);
-  }
+  void TearDown() override { fs::remove_all(root_); }
 
   fs::path root_;
+  wavebench::testing::SimbenchProcess simbench_;
   int port_ = -1;
-  pid_t pid_ = -1;
 };
 
 TEST_F(StaticOverVcan, FourPositionsCompleteAndAgreeWithTheInProcessBench) {

@@ -23,22 +23,17 @@
 #include <string>
 #include <thread>
 
-#include "loopback_port.hpp"
+#include "simbench_process.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
-
-extern char** environ;
 
 namespace {
 
 namespace fs = std::filesystem;
 using namespace std::chrono_literals;
 constexpr const char* kInterface = "vcan1";
-
-using wavebench::testing::free_tcp_port;
-using wavebench::testing::tcp_port_accepts;
 
 std::string read_text(const fs::path& p) {
   std::stringstream s;
@@ -67,8 +62,6 @@ class VendorDevicesOverVcan : public ::testing::Test {
     root_ = fs::temp_directory_path() / ("wavebench-vcan-vendor-" + std::to_string(::getpid()));
     fs::remove_all(root_);
     fs::create_directories(root_);
-    port_ = free_tcp_port();
-    ASSERT_GT(port_, 0);
     const fs::path configs = fs::path(WAVEBENCH_SOURCE_DIR) / "configs";
 
     // The simulated devices: sim.yaml's unit with the vendor-like drive.
@@ -81,6 +74,9 @@ class VendorDevicesOverVcan : public ::testing::Test {
     replace(devices, "  simbench:", std::string("  simbench:\n") + kVendorDrive + "   ");
     const auto devices_path = root_ / "devices.yaml";
     std::ofstream(devices_path) << devices;
+    const auto error = simbench_.start(kInterface, devices_path.string());
+    ASSERT_TRUE(error.empty()) << error;
+    port_ = simbench_.port();
 
     // The bench: vcan-simbench.yaml on this interface and brake port; emulated, so generous
     // times (never a timing assert); the drive guarded every 200 ms, lost after 2 s.
@@ -101,43 +97,14 @@ class VendorDevicesOverVcan : public ::testing::Test {
       replace(bench_, std::string("../eds/") + eds, (configs / "eds" / eds).string());
     bench_path_ = root_ / "bench.yaml";
     std::ofstream(bench_path_) << bench_;
-
-    const std::string exe = std::string(WAVEBENCH_BINARY_DIR) + "/src/cli/wavebench";
-    std::vector<std::string> args{exe,
-                                  "simbench",
-                                  "--can",
-                                  kInterface,
-                                  "--clock",
-                                  "sync",
-                                  "--bench-config",
-                                  devices_path.string(),
-                                  "--modbus",
-                                  "tcp:127.0.0.1:" + std::to_string(port_),
-                                  "--duration",
-                                  "1800"};
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    ASSERT_EQ(posix_spawn(&pid_, exe.c_str(), nullptr, nullptr, argv.data(), environ), 0) << exe;
-    const auto deadline = std::chrono::steady_clock::now() + 120s;
-    while (!tcp_port_accepts(port_) && std::chrono::steady_clock::now() < deadline)
-      std::this_thread::sleep_for(100ms);
-    ASSERT_TRUE(tcp_port_accepts(port_)) << "simbench's brake port " << port_ << " never opened";
   }
-  void TearDown() override {
-    if (pid_ > 0) {
-      ::kill(pid_, SIGTERM);
-      int status = 0;
-      ::waitpid(pid_, &status, 0);
-    }
-    fs::remove_all(root_);
-  }
+  void TearDown() override { fs::remove_all(root_); }
 
   fs::path root_;
   std::string bench_;
   fs::path bench_path_;
+  wavebench::testing::SimbenchProcess simbench_;
   int port_ = -1;
-  pid_t pid_ = -1;
 };
 
 TEST_F(VendorDevicesOverVcan, CheckGreenAndFourPositionStaticRunComplete) {
