@@ -181,7 +181,7 @@ void BenchThread::run_job(Job& job) {
   {
     std::lock_guard lock(mutex_);
     run_queued_ = false;
-    run_ = ActiveRun{"", procedure, "starting", 0, nlohmann::json::array()};
+    run_ = ActiveRun{"", procedure, "starting", 0, nlohmann::json::array(), {}};
   }
   auto progress = [this, &job](const runs::RunProgress& p) {
     {
@@ -201,6 +201,12 @@ void BenchThread::run_job(Job& job) {
   job.request.on_diagnosis = [this](const nlohmann::json& flag) {
     std::lock_guard lock(mutex_);
     if (run_) run_->diagnosis_flags.push_back(flag);
+  };
+  job.request.on_point = [this](const runs::SettledPoint& point) {
+    std::lock_guard lock(mutex_);
+    if (!run_) return;
+    if (run_->points.size() >= ActiveRun::kMaxPoints) run_->points.pop_front();
+    run_->points.push_back(point);
   };
   FinishedRun finished;
   try {

@@ -415,7 +415,8 @@ nlohmann::json DaemonApi::status_json() const {
         {"procedure", s.run->procedure},
         {"phase", s.run->phase},
         {"progress", s.run->fraction},
-        {"diagnosis_flags", s.run->diagnosis_flags}};
+        {"diagnosis_flags", s.run->diagnosis_flags},
+        {"points", s.run->points}};
   } else {
     j["run"] = nullptr;
   }

@@ -37,6 +37,20 @@ UncertainFigure static_point_uncertainty(double te_arcmin, double te_noise_rad,
   return f;
 }
 
+StaticTePointResult static_point_result(const StaticTePoint& p, const GearSense& sense,
+                                        const StaticTeUncertaintyInputs& inputs) {
+  StaticTePointResult r;
+  r.position = p.position;
+  // Within one output revolution: the output encoder's multi-turn zero is arbitrary (the
+  // simulated one sits at 2048 turns), so whole turns carry no information here.
+  const double deg = sense.model_output_angle(p.theta_out_rad) * 180.0 / std::numbers::pi;
+  r.output_angle_deg = deg - 360.0 * std::floor(deg / 360.0);
+  r.te_arcmin = sense.transmission_error(p.theta_in_rad, p.theta_out_rad) * kArcminPerRad;
+  r.torque_nm = p.torque_nm;
+  r.te = static_point_uncertainty(r.te_arcmin, p.te_noise_rad, inputs, sense);
+  return r;
+}
+
 StaticTeSummary summarise_static_pass(const StaticTePass& pass, const GearSense& sense,
                                       const StaticTeUncertaintyInputs& uncertainty) {
   sense.validate();
@@ -51,15 +65,7 @@ StaticTeSummary summarise_static_pass(const StaticTePass& pass, const GearSense&
   double sum = 0, torque = 0;
   double lo = INFINITY, hi = -INFINITY;
   for (const auto& p : pass.points) {
-    StaticTePointResult r;
-    r.position = p.position;
-    // Within one output revolution: the output encoder's multi-turn zero is arbitrary (the
-    // simulated one sits at 2048 turns), so whole turns carry no information here.
-    const double deg = sense.model_output_angle(p.theta_out_rad) * 180.0 / std::numbers::pi;
-    r.output_angle_deg = deg - 360.0 * std::floor(deg / 360.0);
-    r.te_arcmin = sense.transmission_error(p.theta_in_rad, p.theta_out_rad) * kArcminPerRad;
-    r.torque_nm = p.torque_nm;
-    r.te = static_point_uncertainty(r.te_arcmin, p.te_noise_rad, uncertainty, sense);
+    const auto r = static_point_result(p, sense, uncertainty);
     sum += r.te_arcmin;
     torque += p.torque_nm;
     lo = std::min(lo, r.te_arcmin);

@@ -17,7 +17,7 @@ ParsedProcedure parse_as(const nlohmann::json& options) {
 const std::array<ProcedureEntry, 5> kProcedures{{
     {"static", "Static TE",
      "Transmission error at equally spaced output positions, settled, forward and reverse, at "
-     "each brake load (bench.md §4)",
+     "each brake load",
      &StaticTeOptions::schema, &parse_as<StaticTeOptions, StaticTeProcedure>},
     {"dynamic", "Dynamic TE",
      "Transmission error at constant input speed over whole output revolutions: trace, order "

@@ -257,6 +257,9 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       if (twin_beside) twin_registration.emplace(bench, *twin_beside);
 #endif
       report_progress(request.procedure + " start", 0);
+      if (auto* static_te = std::get_if<StaticTeProcedure>(&parsed.procedure)) {
+        static_te->set_point_sink(request.on_point);
+      }
       try {
         procedure_result = run_procedure(
             parsed.procedure, bench, parsed.repeats,

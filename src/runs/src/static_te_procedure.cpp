@@ -221,6 +221,11 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
   const int total = static_cast<int>(o.loads_nm.size()) * 2 * o.positions;
   int done = 0;
 
+  procedures::StaticTeUncertaintyInputs uncertainty;
+  uncertainty.input_resolution_rad = bench.description().input_encoder_resolution_rad;
+  uncertainty.output_resolution_rad = bench.description().output_encoder_resolution_rad;
+  uncertainty.settle_drift_rad = o.settle.max_drift_rad;
+
   SampleRecorder recorder;
   ObserverRegistration registration(bench, recorder);
   StaticTeOutcome out;
@@ -250,6 +255,11 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
                             o.approach_rad > 0 ? o.approach_speed_rad_s : o.move_speed_rad_s);
         if (!wait_settled(bench, o)) ++out.settle_timeouts;
         pass.points.push_back(average_window(bench, recorder, o.window_s, k, sense));
+        if (point_sink_) {
+          const auto r = procedures::static_point_result(pass.points.back(), sense, uncertainty);
+          point_sink_({r.output_angle_deg, r.te_arcmin * 60.0, load, r.torque_nm,
+                       procedures::direction_name(d)});
+        }
         ++done;
       }
       out.passes.push_back(std::move(pass));
@@ -257,10 +267,6 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
   }
   bench.set_brake_torque(0);
   if (progress) progress("static analysis", 1.0);
-  procedures::StaticTeUncertaintyInputs uncertainty;
-  uncertainty.input_resolution_rad = bench.description().input_encoder_resolution_rad;
-  uncertainty.output_resolution_rad = bench.description().output_encoder_resolution_rad;
-  uncertainty.settle_drift_rad = o.settle.max_drift_rad;
   out.result = procedures::analyse_static_te(out.passes, sense, uncertainty);
   return out;
 }

@@ -1,4 +1,4 @@
-// The operator console: bench panel, live plots, start form, stop, progress and verdict. The
+// The operator console: start form, progress and verdict, live plots, bench panel, stop. The
 // daemon's status arrives with the live stream (every fifth frame), so nothing here polls but
 // the session check, which also keeps the session alive while the page is open.
 import { api, get, post, ApiError } from './api.js';
@@ -6,14 +6,19 @@ import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
 import { uncertain } from './dom.js';
+import { SettledPointsPlot } from './settled_points_plot.js';
 
 const $ = (id) => document.getElementById(id);
 let loggedIn = false;
 let lastStatus = null;
 let shownRun = null;
 let runStartedAt = null;
-let runId = null;
+let runId = null;       // the active run's id, once the daemon has named it
+let runActive = false;  // a run was active at the last status
 let shownFlags = '';
+// The unit mounted, for the header: the active run's serial, else the one entered for the
+// next run, else the last run's.
+const unit = { run: null, entered: '', last: null };
 
 function message(text, error = false) {
   $('message').textContent = text;
@@ -58,10 +63,16 @@ async function checkSession() {
   }
 }
 
+function showUnit() {
+  const serial = unit.run || unit.entered || unit.last;
+  $('unit-mounted').textContent = serial ? `unit ${serial}` : 'no unit serial entered';
+}
+
 function showBench(s) {
   $('lifecycle').textContent = `${s.state} · ${s.lifecycle}`;
   $('lifecycle').className = `badge ${s.lifecycle}`;
-  $('bench-name').textContent = s.bench ? `${s.bench.name} · ${s.bench.unit_serial || ''}` : (s.connect_error || '');
+  $('bench-name').textContent = s.bench ? s.bench.name : (s.connect_error || '');
+  showUnit();
   const a = s.acquisition || {};
   const rows = [
     ['drive (CiA 402)', fmt(a.drive_state)],
@@ -114,26 +125,65 @@ function showBench(s) {
 
 function showRun(s) {
   const run = s.run;
-  $('progress').hidden = !run;
-  if (run) {
-    if (runId !== run.id) {
-      runId = run.id;
-      runStartedAt = Date.now();
-    }
-    $('run-procedure').textContent = `${run.procedure} ${run.id || ''}`;
-    $('run-phase').textContent = run.phase || '…';
-    const f = run.progress || 0;
-    $('run-percent').textContent = `${(100 * f).toFixed(0)} %`;
-    $('run-bar').value = f;
-    const elapsed = (Date.now() - runStartedAt) / 1000;
-    $('run-left').textContent = f > 0.02 && f < 1 ? `${Math.round(elapsed * (1 - f) / f)} s left` : '';
-    showDiagnosis(run.diagnosis_flags || []);
+  if (run && (!runActive || (runId !== null && run.id !== null && run.id !== runId))) newRun(run);
+  else if (run && runId === null && run.id !== null) runNamed(run.id);
+  if (!run && runActive) {
+    runActive = false;
+    unit.last = unit.run || unit.last;
+    unit.run = null;
   }
+  showProgress(run);
+  if (run) xyPlot.show(run);
   const last = s.last_run;
-  if (last && last.id && last.id !== shownRun) {
+  if (!run && last && last.id && last.id !== shownRun) {
     shownRun = last.id;
     showLastRun(last);
   }
+}
+
+// A run began (this page's or another client's): the last verdict and the last run's points
+// go at once.
+function newRun(run) {
+  runActive = true;
+  runId = null;
+  runStartedAt = Date.now();
+  clearVerdict();
+  xyPlot.clear();
+  if (run.id !== null) runNamed(run.id);
+}
+
+// The header names the unit under test, as the run records it.
+function runNamed(id) {
+  runId = id;
+  get(`/api/runs/${encodeURIComponent(id)}`).then((d) => {
+    if (runId === id && runActive && d.run && d.run.unit_serial) {
+      unit.run = d.run.unit_serial;
+      showUnit();
+    }
+  }).catch(() => {});
+}
+
+function clearVerdict() {
+  $('last-run').hidden = true;
+  $('verdict').textContent = '';
+  $('verdict').className = 'verdict';
+  $('verdict-of').textContent = '';
+  $('static-table').hidden = true;
+  if (lastStatus && lastStatus.last_run) shownRun = lastStatus.last_run.id;
+}
+
+// Progress of the active run: procedure, phase, fraction and an estimate of the time left.
+function showProgress(run) {
+  $('progress').hidden = !run;
+  if (!run) return;
+  $('run-procedure').textContent = `${run.procedure} ${run.id || ''}`;
+  $('run-phase').textContent = run.phase || '…';
+  const f = run.progress || 0;
+  $('run-percent').textContent = `${(100 * f).toFixed(0)} %`;
+  $('run-bar').value = f;
+  const elapsed = (Date.now() - runStartedAt) / 1000;
+  $('run-left').textContent = f > 0.02 && f < 1 ? `${Math.round(elapsed * (1 - f) / f)} s left` : '';
+  showDiagnosis(run.diagnosis_flags || []);
 }
 
 // The twin's flags while the run goes on (redrawn only when they change).
@@ -146,6 +196,22 @@ function showDiagnosis(flags) {
   box.replaceChildren(box.firstElementChild, ...(flags.length ? [diagnosisFlagsTable(flags, 'run-diagnosis-table')] : []));
 }
 
+// "2026-11-27 15:04:05" in the browser's local time; the daemon's times are UTC ISO 8601
+// (with microseconds, which Date does not need).
+function localTime(iso) {
+  if (!iso) return '';
+  const d = new Date(String(iso).replace(/(\.\d{3})\d+/, '$1'));
+  if (Number.isNaN(d.getTime())) return String(iso);
+  const two = (n) => String(n).padStart(2, '0');
+  return `${d.getFullYear()}-${two(d.getMonth() + 1)}-${two(d.getDate())} ` +
+    `${two(d.getHours())}:${two(d.getMinutes())}:${two(d.getSeconds())}`;
+}
+
+function procedureTitle(name) {
+  const p = form.procedures.find((x) => x.name === name);
+  return p ? p.title || name : name;
+}
+
 async function showLastRun(last) {
   $('last-run').hidden = false;
   $('last-run-link').textContent = last.id;
@@ -156,10 +222,13 @@ async function showLastRun(last) {
   const verdict = $('verdict');
   verdict.textContent = '';
   verdict.className = 'verdict';
+  $('verdict-of').textContent = '';
   $('static-table').hidden = true;
   try {
     const detail = await get(`/api/runs/${encodeURIComponent(last.id)}`);
+    if (runActive || shownRun !== last.id) return;  // a newer run began meanwhile
     const results = detail.results || {};
+    const run = detail.run || {};
     if (results.verdict === 'PASS' || results.verdict === 'FAIL' || results.verdict === 'UNDECIDED') {
       // UNDECIDED: a limit inside a figure's uncertainty interval (ISO 14253-1), shown as such.
       verdict.textContent = results.verdict;
@@ -170,6 +239,21 @@ async function showLastRun(last) {
     } else if (last.status !== 'complete') {
       verdict.textContent = last.status.toUpperCase();
       verdict.className = 'verdict aborted';
+    } else {
+      verdict.textContent = 'no verdict';
+      verdict.className = 'verdict none';
+      verdict.title = 'the run had no spec to judge it against';
+    }
+    // Which unit, which procedure, when: the verdict is never read for the wrong unit.
+    $('verdict-of').textContent = [
+      run.unit_serial ? `unit ${run.unit_serial}` : 'no unit serial',
+      procedureTitle(run.procedure || ''),
+      run.spec ? `spec ${run.spec}` : null,
+      localTime(run.finished_at || run.started_at),
+    ].filter((x) => x).join(' · ');
+    if (run.unit_serial) {
+      unit.last = run.unit_serial;
+      showUnit();
     }
     if (Array.isArray(results.static) && results.static.length) staticTable(results.static);
   } catch (_) {
@@ -177,20 +261,30 @@ async function showLastRun(last) {
   }
 }
 
+// The static table's columns as the operator reads them (results.json keys otherwise).
+const STATIC_COLUMNS = {
+  direction: 'direction',
+  load_nm: 'load [N·m]',
+  mean_arcmin: 'mean TE [arcmin]',
+  p2p_arcmin: 'TE peak–peak [arcmin]',
+  std_arcmin: 'TE std. dev. [arcmin]',
+};
+
 function staticTable(entries) {
   const keys = Object.keys(entries[0]).filter((k) => entries.every((e) => typeof e[k] !== 'object' || e[k] === null));
   const t = $('static-table');
   const head = document.createElement('tr');
   for (const k of keys) {
     const th = document.createElement('th');
-    th.textContent = k;
+    th.textContent = STATIC_COLUMNS[k] || k;
     head.append(th);
   }
   const rows = entries.map((e) => {
     const tr = document.createElement('tr');
     for (const k of keys) {
       const td = document.createElement('td');
-      // A figure with an uncertainty beside it: value ± U (k = 2), its budget on hover/click.
+      // A figure with an uncertainty beside it: value ± U (k = 2) to the digits U supports,
+      // its budget on hover/click.
       if (e.uncertainty && e.uncertainty[k]) td.append(uncertain(e, k));
       else td.textContent = fmt(e[k], 4);
       tr.append(td);
@@ -248,8 +342,19 @@ async function reset() {
 }
 
 const form = new StartForm({
-  onStarted: (answer) => message(`Run ${answer.run_id || ''} started.`),
+  onStarted: (answer, request) => {
+    message(`Run ${answer.run_id || ''} started.`);
+    clearVerdict();
+    unit.run = request.unit_serial || null;
+    showUnit();
+  },
+  onSerial: (serial) => {
+    unit.entered = serial;
+    showUnit();
+  },
 });
+const xyPlot = new SettledPointsPlot();
+window.wavebenchXY = xyPlot;
 const plots = new LivePlots({ onStatus: showStatus });
 window.wavebenchLive = plots;
 

@@ -1,4 +1,6 @@
 // Small DOM builders for the pages (no framework: the pages are a few tables and plots).
+import { roundedToUncertainty } from './uncertain_digits.js';
+
 export function el(tag, attrs = {}, ...children) {
   const node = document.createElement(tag);
   for (const [key, value] of Object.entries(attrs || {})) {
@@ -51,6 +53,12 @@ export function specName(run, results) {
   return typeof s === 'string' ? s : s.name || s.model || null;
 }
 
+// "value ± U" to the digits U supports (uncertain_digits.js); `digits` significant without U.
+function figureText(value, expanded, digits) {
+  const r = roundedToUncertainty(value, expanded);
+  return r ? `${r.value} ± ${r.expanded}` : `${num(value, digits)} ± ${num(expanded, 2)}`;
+}
+
 // A figure of results.json with its expanded uncertainty: "5.70 ± 0.02" and, on hover or
 // focus, its budget (the figure's `uncertainty` entry beside it: value, expanded, k, budget).
 // Click opens the budget as a small table under the value. A figure without one shows alone.
@@ -67,7 +75,7 @@ export function uncertain(object, key, digits = 4) {
   const shown = el('span', {
     class: 'uncertain', title, tabindex: '0', role: 'button', 'aria-expanded': 'false',
     'data-expanded': String(u.expanded),
-  }, `${num(value, digits)} ± ${num(u.expanded, 2)}`);
+  }, figureText(value, u.expanded, digits));
   const toggle = () => {
     details.hidden = !details.hidden;
     shown.setAttribute('aria-expanded', String(!details.hidden));

@@ -1,7 +1,11 @@
 // The live plots: TE, input speed, torque and brake current against time, fed by the daemon's
 // server-sent events (GET /api/live/stream). The daemon decimates by min and max per column;
 // the page appends the rows and drops those older than the window, so 10 minutes of 1 kHz
-// history stay a few thousand points per series.
+// history stay a few thousand points per series. Time runs to the newest sample at 0 (a strip
+// chart's "seconds ago"), so its tick labels stay short whatever the clock.
+import { xAxis, yAxis } from './axis_style.js';
+
+const HEIGHT = 190;
 const SERIES = [
   { key: 'te_arcsec', el: 'plot-te', label: 'TE', unit: 'arcsec', scale: 1, stroke: '#c0392b' },
   { key: 'input_speed_rad_s', el: 'plot-speed', label: 'input speed', unit: 'rpm',
@@ -32,12 +36,12 @@ export class LivePlots {
   makePlot(s) {
     const el = document.getElementById(s.el);
     const opts = {
-      title: `${s.label} [${s.unit}]`,
       width: Math.max(el.clientWidth, 300),
-      height: 170,
-      scales: { x: { time: false } },
-      axes: [{ label: 't [s]' }, { size: 60 }],
-      series: [{ label: 't' }, { label: s.label, stroke: s.stroke, width: 1, spanGaps: false }],
+      height: HEIGHT,
+      scales: { x: { time: false, range: () => [-this.windowS, 0] } },
+      axes: [xAxis('time [s], 0 = newest sample'), yAxis(`${s.label} [${s.unit}]`)],
+      series: [{ label: 't [s]', value: (u, v) => (v == null ? '–' : v.toFixed(2)) },
+        { label: `${s.label} [${s.unit}]`, stroke: s.stroke, width: 1, spanGaps: false }],
       legend: { live: true },
     };
     return new uPlot(opts, [[], []], el);
@@ -46,7 +50,7 @@ export class LivePlots {
   resize() {
     SERIES.forEach((s, i) => {
       const el = document.getElementById(s.el);
-      this.plots[i].setSize({ width: Math.max(el.clientWidth, 300), height: 170 });
+      this.plots[i].setSize({ width: Math.max(el.clientWidth, 300), height: HEIGHT });
     });
   }
 
@@ -115,7 +119,9 @@ export class LivePlots {
     if (this.dirty || this.redrawEveryFrame) {  // the latter: the frame-rate benchmark's worst case
       this.dirty = false;
       this.draws += 1;
-      SERIES.forEach((s, k) => this.plots[k].setData([this.t, this.values[k]]));
+      const newest = this.t.length ? this.t[this.t.length - 1] : 0;
+      const ago = this.t.map((t) => t - newest);
+      SERIES.forEach((s, k) => this.plots[k].setData([ago, this.values[k]]));
     }
     requestAnimationFrame((n) => this.tick(n));
   }

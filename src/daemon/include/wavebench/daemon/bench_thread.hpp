@@ -19,6 +19,7 @@
 #include "wavebench/daemon/daemon_state.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/runs/settled_point.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
@@ -48,6 +49,10 @@ struct ActiveRun {
   double fraction = 0;
   // The twin's diagnosis flags so far (results.json twin.diagnosis.flags[] entries).
   nlohmann::json diagnosis_flags = nlohmann::json::array();
+  // A static run's settled positions so far (the console's TE-against-output-angle view); the
+  // newest kMaxPoints.
+  static constexpr std::size_t kMaxPoints = 2000;
+  std::deque<runs::SettledPoint> points;
 };
 
 struct FinishedRun {

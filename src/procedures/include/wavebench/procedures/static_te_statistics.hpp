@@ -62,6 +62,11 @@ UncertainFigure static_point_uncertainty(double te_arcmin, double te_noise_rad,
                                          const StaticTeUncertaintyInputs& inputs,
                                          const GearSense& sense);
 
+// One settled position's figures as results.json gives them (angle within a revolution, TE and
+// its budget).
+StaticTePointResult static_point_result(const StaticTePoint& point, const GearSense& sense,
+                                        const StaticTeUncertaintyInputs& inputs);
+
 struct StaticTeSummary {
   Direction direction = Direction::kForward;
   double load_nm = 0;

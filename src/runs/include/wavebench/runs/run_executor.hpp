@@ -14,6 +14,7 @@
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/runs/product_spec.hpp"
+#include "wavebench/runs/settled_point.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::runs {
@@ -42,6 +43,9 @@ struct RunRequest {
   // Called with each flag of the twin's diagnosis as results.json writes it (twin.diagnosis
   // .flags[]), live, on the twin's thread: never on the bench's, so it may lock and log.
   std::function<void(const nlohmann::json& flag)> on_diagnosis;
+  // Called with each settled position of a static procedure as it is measured, on the bench
+  // thread (SettledPointSink: quick, no I/O). Other procedures do not call it.
+  SettledPointSink on_point;
 };
 
 // Throws std::invalid_argument naming `unit_serial` or `operator`, the value and what was

@@ -15,6 +15,7 @@
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
+#include "wavebench/runs/settled_point.hpp"
 
 namespace wavebench::runs {
 
@@ -60,9 +61,12 @@ class StaticTeProcedure {
   RunPlan plan(const bench::BenchDescription& bench) const;
   // Throws bench::BenchAborted when the bench trips.
   StaticTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
+  // Where run() reports each settled position as it is measured (none: not reported).
+  void set_point_sink(SettledPointSink sink) { point_sink_ = std::move(sink); }
 
  private:
   StaticTeOptions options_;
+  SettledPointSink point_sink_;
 };
 
 }  // namespace wavebench::runs
