@@ -101,8 +101,9 @@ class ConsoleTest(unittest.TestCase):
         return self.driver.find_element(By.CSS_SELECTOR, css)
 
     def set_option(self, name, value):
-        if not self.el('#advanced').get_attribute('open'):
-            self.el('#advanced summary').click()  # the options are under "Advanced"
+        # The options are under "Advanced" (opened by script: a click right after a <select>
+        # choice may land on the select's popup in headless Chromium).
+        self.driver.execute_script("document.getElementById('advanced').open = true")
         field = self.el(f'#opt-{name}')
         field.clear()
         field.send_keys(value)

@@ -116,8 +116,9 @@ class ConsoleStartTest(unittest.TestCase):
         self.until(lambda: self.el('#start').is_enabled(), 'start enabled')
 
     def set_option(self, name, value):
-        if not self.el('#advanced').get_attribute('open'):
-            self.el('#advanced summary').click()
+        # The options are under "Advanced" (opened by script: a click right after a <select>
+        # choice may land on the select's popup in headless Chromium).
+        self.driver.execute_script("document.getElementById('advanced').open = true")
         field = self.el(f'#opt-{name}')
         field.clear()
         field.send_keys(value)
@@ -132,7 +133,7 @@ class ConsoleStartTest(unittest.TestCase):
         # Serial, spec and Start come before the procedure options, which are folded away.
         order = self.js('''
             const ids = ['unit-serial', 'spec', 'start', 'options'];
-            const all = [...document.querySelectorAll('#start-form *')];
+            const all = [...document.querySelectorAll('#run-panel *')];
             return ids.map((id) => all.indexOf(document.getElementById(id)));''')
         self.assertEqual(order, sorted(order), f'form order {order}')
         self.assertIsNone(self.el('#advanced').get_attribute('open'))
@@ -141,10 +142,13 @@ class ConsoleStartTest(unittest.TestCase):
         for name in [o.get_attribute('value') for o in
                      self.driver.find_elements(By.CSS_SELECTOR, '#procedure option')]:
             Select(self.el('#procedure')).select_by_value(name)
-            text = self.js("return document.getElementById('start-form').textContent")
+            text = self.js("return document.getElementById('run-panel').textContent")
             self.assertNotIn('bench.md', text, f'procedure {name}')
             self.assertNotIn('§', text, f'procedure {name}')
         Select(self.el('#procedure')).select_by_value('static')
+        # The text checked holds the option hints too (folded away, but in the page).
+        self.assertIn('equally spaced over one output revolution',
+                      self.js("return document.getElementById('run-panel').textContent"))
         # The header names no unit yet (not the bench config's seed serial).
         seed = (self.status().get('bench') or {}).get('unit_serial')
         if seed:
@@ -232,7 +236,8 @@ class ConsoleStartTest(unittest.TestCase):
               const a = u.axes[1];
               ctx.font = a.font ? a.font[0] : '12px sans-serif';
               const labels = (a._values || []).filter((v) => v !== null && v !== '');
-              return { label: a.label, ticks: labels.length, size: a._size,
+              return { label: a.label, ticks: labels.length, size: a._size, values: labels,
+                       height: u.bbox.height / devicePixelRatio,
                        widest: Math.max(0, ...labels.map((v) => ctx.measureText(String(v)).width)) };
             });''')
         for a in axes:

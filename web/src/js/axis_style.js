@@ -17,5 +17,5 @@ export function xAxis(label) {
 // space: the least number of pixels between y ticks (uPlot's default, 30, leaves one or two
 // ticks on a short plot).
 export function yAxis(label) {
-  return { label, stroke: '#333', grid: { stroke: '#e4e4e4' }, space: 22, size: labelWidth };
+  return { label, stroke: '#333', grid: { stroke: '#e4e4e4' }, space: 18, size: labelWidth };
 }

@@ -5,7 +5,7 @@
 // chart's "seconds ago"), so its tick labels stay short whatever the clock.
 import { xAxis, yAxis } from './axis_style.js';
 
-const HEIGHT = 190;
+const HEIGHT = 210;
 const SERIES = [
   { key: 'te_arcsec', el: 'plot-te', label: 'TE', unit: 'arcsec', scale: 1, stroke: '#c0392b' },
   { key: 'input_speed_rad_s', el: 'plot-speed', label: 'input speed', unit: 'rpm',

@@ -58,8 +58,11 @@ export class StartForm {
       this.showOptions();
       this.changed();
     });
-    this.form.addEventListener('input', () => this.changed());
-    this.form.addEventListener('change', () => this.changed());
+    // The options sit apart from the form, under "Advanced" below the progress and verdict.
+    for (const part of [this.form, $('advanced')]) {
+      part.addEventListener('input', () => this.changed());
+      part.addEventListener('change', () => this.changed());
+    }
     this.dialog = $('no-spec-dialog');
     $('start').addEventListener('focus', () => this.showSummary());
     $('start').addEventListener('blur', () => this.showSummary());
@@ -203,7 +206,7 @@ export class StartForm {
   }
 
   clearErrors() {
-    for (const e of this.form.querySelectorAll('.field-error')) e.textContent = '';
+    for (const e of $('run-panel').querySelectorAll('.field-error')) e.textContent = '';
   }
 
   async submit() {
@@ -225,7 +228,7 @@ export class StartForm {
 
   showError(e) {
     const key = e instanceof ApiError ? e.key : null;
-    const beside = key ? this.form.querySelector(`.field-error[data-key="${CSS.escape(key)}"]`) : null;
+    const beside = key ? $('run-panel').querySelector(`.field-error[data-key="${CSS.escape(key)}"]`) : null;
     if (beside && beside.closest('#advanced')) $('advanced').open = true;
     (beside || $('form-error')).textContent = e.message;
   }
