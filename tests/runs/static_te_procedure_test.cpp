@@ -69,6 +69,38 @@ TEST(StaticTeProcedure, EveryPassMatchesTheUnitsTruthWithinATenthOfAnArcminute) 
   }
 }
 
+// The console's live TE-against-output-angle view: one point per settled position, as it is
+// measured, with the figures results.json gives that position.
+TEST(StaticTeProcedure, ReportsEachSettledPositionAsResultsGiveIt) {
+  PlantBench bench(simdevices::default_bench_gear());
+  bench.connect();
+  StaticTeOptions o;
+  o.positions = 4;
+  o.window_s = 0.1;
+  o.loads_nm = {0, 20};
+  StaticTeProcedure procedure(o);
+  std::vector<SettledPoint> points;
+  procedure.set_point_sink([&](const SettledPoint& p) { points.push_back(p); });
+  const auto out = procedure.run(bench);
+  ASSERT_EQ(points.size(), 4u * 2u * 2u);
+  std::size_t k = 0;
+  for (const auto& pass : out.result.passes) {
+    for (const auto& r : pass.points) {
+      const auto& p = points[k++];
+      EXPECT_EQ(p.direction, procedures::direction_name(pass.direction));
+      EXPECT_EQ(p.load_nm, pass.load_nm);
+      EXPECT_DOUBLE_EQ(p.output_angle_deg, r.output_angle_deg);
+      EXPECT_DOUBLE_EQ(p.te_arcsec, r.te_arcmin * 60.0);
+      EXPECT_GE(p.output_angle_deg, 0.0);
+      EXPECT_LT(p.output_angle_deg, 360.0);
+    }
+  }
+  const nlohmann::json j = points.front();
+  for (const char* key : {"output_angle_deg", "te_arcsec", "load_nm", "torque_nm", "direction"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+}
+
 TEST(StaticTeOptions, RefuseBadValuesNamingKeyValueAndExpectation) {
   try {
     StaticTeOptions::from_json({{"positions", 1}});
