@@ -76,6 +76,7 @@ void BenchThread::start() {
       std::lock_guard lock(mutex_);
       bench_ = bench.get();
       description_ = bench->description();
+      manual_.set_bench(*description_);
       extra_channels_ = bench->extra_channels();
       devices_ = bench->device_info();
     }
@@ -162,17 +163,20 @@ void BenchThread::idle_until_job(std::unique_lock<std::mutex>& lock) {
       wake_.wait_for(lock, std::chrono::milliseconds(200));
       continue;
     }
+    // Shorter slices while the manual panel is engaged: its dead-man is checked between them.
+    const auto slice = manual_.engaged() ? ManualSession::kServeSlice : kSlice;
     const auto start = std::chrono::steady_clock::now();
     lock.unlock();
     try {
-      bench_->idle_for(std::chrono::duration<double>(kSlice).count());
+      manual_.serve(*bench_);
+      bench_->idle_for(std::chrono::duration<double>(slice).count());
       refresh_stats_on_bench_thread();
     } catch (const std::exception& e) {
       spdlog::debug("idle: {}", e.what());
     }
     lock.lock();
     const auto spent = std::chrono::steady_clock::now() - start;
-    if (spent < kSlice && jobs_.empty() && !stopping_) wake_.wait_for(lock, kSlice - spent);
+    if (spent < slice && jobs_.empty() && !stopping_) wake_.wait_for(lock, slice - spent);
   }
 }
 
@@ -301,6 +305,9 @@ CheckOutcome BenchThread::check(std::chrono::milliseconds wait) {
                   ": the check runs with the bench inactive"};
     }
     if (!check_) return {CheckOutcome::Kind::kUnavailable, {}, "no commissioning check here"};
+    if (manual_.engaged())
+      return {
+          CheckOutcome::Kind::kRejected, {}, "the manual panel has the servo on; switch it off"};
     jobs_.push_back(job);
   }
   wake_.notify_all();
@@ -345,6 +352,10 @@ StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milli
     if (bench_->state() == bench::BenchLifecycle::kFault) {
       return {StartOutcome::Kind::kRejected, "",
               "the bench is in fault (" + bench_->fault_reason() + "); clear it with a reset"};
+    }
+    if (manual_.engaged()) {
+      return {StartOutcome::Kind::kRejected, "",
+              "the manual panel has the servo on: switch it off before a run"};
     }
     run_queued_ = true;
     jobs_.push_back(job);
@@ -406,6 +417,7 @@ BenchStatus BenchThread::status() const {
   s.run = run_;
   s.last_run = last_run_;
   s.acquisition = acquisition_;
+  s.manual = manual_.state();
   if (bench_ && connect_error_.empty()) {
     s.lifecycle = bench_->state();
     if (s.lifecycle == bench::BenchLifecycle::kFault) s.fault_reason = bench_->fault_reason();
@@ -424,6 +436,24 @@ void BenchThread::emergency_stop(const std::string& reason,
     run_ended_.wait_for(lock, wait, [&] { return !run_.has_value(); });
   } catch (...) {
   }
+}
+
+std::optional<ManualRefusal> BenchThread::manual(
+    const std::function<std::optional<ManualRefusal>(ManualSession&)>& ask) {
+  std::lock_guard lock(mutex_);
+  if (stopping_ || !bench_) return ManualRefusal{409, "the daemon is stopping"};
+  if (!connect_error_.empty())
+    return ManualRefusal{409, "the bench is not connected (" + connect_error_ + ")"};
+  if (run_ || run_queued_)
+    return ManualRefusal{409, "a run is active: the manual panel waits until it has ended"};
+  if (bench_->state() == bench::BenchLifecycle::kFault)
+    return ManualRefusal{
+        409, "the bench is in fault (" + bench_->fault_reason() + "); clear it with a reset"};
+  return ask(manual_);
+}
+
+void BenchThread::manual_stop(const std::string& why) {
+  if (manual_.stop(why)) trip(why);
 }
 
 void BenchThread::shutdown(const std::string& reason) {

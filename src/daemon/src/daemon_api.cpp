@@ -11,12 +11,14 @@
 #include "wavebench/daemon/console_files.hpp"
 #include "wavebench/daemon/live_stream.hpp"
 #include "wavebench/daemon/low_priority_reads.hpp"
+#include "wavebench/daemon/manual_api.hpp"
 #include "wavebench/daemon/printable_text.hpp"
 #include "wavebench/daemon/request_json.hpp"
 #include "wavebench/daemon/run_export_download.hpp"
 #include "wavebench/daemon/run_history_query.hpp"
 #include "wavebench/daemon/run_trace.hpp"
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/daemon/servo_words.hpp"
 #include "wavebench/daemon/session_table.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
 #include "wavebench/runs/product_spec.hpp"
@@ -234,6 +236,11 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       if (seg[1] == "stop") return stop();
       return reset();
     }
+    if (seg.size() == 3 && seg[1] == "manual") {
+      if (!post) return method_not_allowed("POST");
+      if (auto refused = refuse_change(request)) return std::move(*refused);
+      return manual_request(bench_, live_, seg[2], request.body);
+    }
     if (seg.size() == 2 && seg[1] == "procedures") {
       return get ? ApiResponse{200, runs::procedures_json()} : method_not_allowed("GET");
     }
@@ -430,10 +437,12 @@ nlohmann::json DaemonApi::status_json() const {
   j["live_samples"] = live_.total();
   // The newest sample's values for the bench panel (null: not valid in that cycle).
   j["latest"] = nullptr;
+  std::optional<storage::SyncSample> newest_sample;
   if (const auto total = live_.total(); total > 0) {
     const auto newest = live_.since(total - 1, 1);
     if (!newest.samples.empty()) {
       const auto& x = newest.samples.back().sample;
+      newest_sample = x;
       const auto value = [&](storage::SampleFlag flag, double v) {
         return x.valid(flag) ? nlohmann::json(v) : nlohmann::json(nullptr);
       };
@@ -445,6 +454,10 @@ nlohmann::json DaemonApi::status_json() const {
                      {"brake_torque_nm", value(storage::kBrakeTorqueValid, x.brake_torque_nm)}};
     }
   }
+  const auto words = servo_words(s, newest_sample);
+  j["servo"] = words.servo;
+  j["brake"] = words.brake;
+  j["manual"] = manual_json(s.manual);
   return j;
 }
 

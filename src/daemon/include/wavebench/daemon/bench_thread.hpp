@@ -18,6 +18,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/daemon/daemon_state.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/manual_session.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
 #include "wavebench/runs/settled_point.hpp"
 #include "wavebench/storage/run_store.hpp"
@@ -72,6 +73,7 @@ struct BenchStatus {
   std::optional<ActiveRun> run;
   std::optional<FinishedRun> last_run;
   std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
+  ManualState manual;                                  // the manual panel (manual_session.hpp)
 };
 
 // What POST /api/runs gets back.
@@ -124,6 +126,12 @@ class BenchThread {
   // Trips the bench and, unless called on the bench thread itself, waits up to `wait` for the
   // active run to be finished (marked aborted) by the bench thread. For the last resort.
   void emergency_stop(const std::string& reason, std::chrono::milliseconds wait) noexcept;
+  // The manual panel: `ask` runs on the session unless a run is active or queued, or the bench
+  // is not ready (409 naming why); a run is refused while the panel is engaged.
+  std::optional<ManualRefusal> manual(
+      const std::function<std::optional<ManualRefusal>(ManualSession&)>& ask);
+  // Ends the panel's motion; a go-to in progress is interrupted by tripping the bench.
+  void manual_stop(const std::string& why);
 
  private:
   class StatsObserver;
@@ -161,6 +169,7 @@ class BenchThread {
   bool run_queued_ = false;
   std::optional<FinishedRun> last_run_;
   std::optional<bench::AcquisitionStats> acquisition_;
+  ManualSession manual_{[this] { wake_.notify_all(); }};
   std::thread thread_;
 };
 

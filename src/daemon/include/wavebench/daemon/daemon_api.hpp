@@ -8,6 +8,7 @@
 //   POST /api/abort                           trip the bench: "operator abort" (change)
 //   POST /api/stop                            safe state: "operator stop"      (change)
 //   POST /api/reset                           clear a fault / reconnect        (change)
+//   POST /api/manual/{jog|stop|goto|brake|servo|alive}   the manual panel (manual_api.hpp) (change)
 //   POST /api/session   {token}               log in: Set-Cookie wb_session (HttpOnly, Strict)
 //   GET  /api/session                         {"authenticated": bool}; renews the session
 //   DELETE /api/session                       log out
