@@ -18,6 +18,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/daemon/daemon_state.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/post_run_queue.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
 #include "wavebench/storage/run_store.hpp"
 
@@ -45,15 +46,23 @@ struct ActiveRun {
   std::string run_id;  // empty until the executor has created the run
   std::string procedure;
   std::string phase;
-  double fraction = 0;
+  double fraction = 0;      // of the recording, by time
+  double remaining_s = -1;  // of the recording; negative: not known
+  StatedProgress stated;    // what the executor last said, told forward by status()
   // The twin's diagnosis flags so far (results.json twin.diagnosis.flags[] entries).
   nlohmann::json diagnosis_flags = nlohmann::json::array();
 };
 
+// The newest run started: a new run replaces the previous one's verdict at once.
 struct FinishedRun {
   std::string run_id;
-  std::string status;  // complete, aborted, or "failed" when the executor threw
+  // running (recording), processing (its post-run work queued or going on), complete,
+  // aborted, or "failed" when the executor threw
+  std::string status;
   std::string reason;
+  std::string procedure;
+  std::string unit_serial;
+  std::string verdict;  // PASS, FAIL, UNDECIDED; empty: none (yet)
 };
 
 struct BenchStatus {
@@ -66,6 +75,7 @@ struct BenchStatus {
   std::vector<bench::BenchDeviceInfo> devices;
   std::optional<ActiveRun> run;
   std::optional<FinishedRun> last_run;
+  std::vector<PostRunStatus> post_runs;  // recorded runs whose results are still being made
   std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
 };
 
@@ -114,7 +124,8 @@ class BenchThread {
   CheckOutcome check(std::chrono::milliseconds wait = std::chrono::seconds(60));
   BenchStatus status() const;
   // Trips the bench with `reason` if a run is active, lets the run finish aborted, puts the
-  // bench in its safe state, disconnects and joins. Idempotent.
+  // bench in its safe state, disconnects and joins; then waits for the post-run work of every
+  // recorded run (nothing recorded is left unfinished). Idempotent.
   void shutdown(const std::string& reason);
   // Trips the bench and, unless called on the bench thread itself, waits up to `wait` for the
   // active run to be finished (marked aborted) by the bench thread. For the last resort.
@@ -132,6 +143,8 @@ class BenchThread {
   void idle_until_job(std::unique_lock<std::mutex>& lock);
   void trip(const std::string& reason);
   void refresh_stats_on_bench_thread();
+  void post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
+                     const std::string& error);
 
   BenchFactory factory_;
   BenchCheck check_;
@@ -157,6 +170,8 @@ class BenchThread {
   std::optional<FinishedRun> last_run_;
   std::optional<bench::AcquisitionStats> acquisition_;
   std::thread thread_;
+  // Last: destroyed (drained) first, while what its work reports to is still there.
+  PostRunQueue post_runs_;
 };
 
 }  // namespace wavebench::daemon
