@@ -91,6 +91,7 @@ def ends(samples):
 def judge(samples):
     rec_end, post_end = ends(samples)
     worst, judged, skipped, bad = float('inf'), 0, 0, []
+    per_part = {}
     for t, s in samples:
         parts = []
         run = s.get('run')
@@ -108,8 +109,12 @@ def judge(samples):
             judged += 1
             ratio = (stated if stated is not None else 0) / true
             worst = min(worst, ratio)
+            key = (rid, what.split(' ')[0])
+            per_part[key] = min(per_part.get(key, float('inf')), ratio)
             if ratio < 0.8:
                 bad.append(f'{rid} {what}: stated {stated} s, true {true:.2f} s')
+    for (rid, what), r in sorted(per_part.items()):
+        print(f'  {rid} {what}: worst stated/true {r:.2f}')
     return worst, judged, skipped, bad
 
 

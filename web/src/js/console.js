@@ -6,12 +6,12 @@ import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
 import { uncertain } from './dom.js';
+import { showPostRuns, timeLeft } from './run_progress.js';
 
 const $ = (id) => document.getElementById(id);
 let loggedIn = false;
 let lastStatus = null;
 let shownRun = null;
-let runStartedAt = null;
 let runId = null;
 let shownFlags = '';
 
@@ -118,20 +118,22 @@ function showRun(s) {
   if (run) {
     if (runId !== run.id) {
       runId = run.id;
-      runStartedAt = Date.now();
     }
     $('run-procedure').textContent = `${run.procedure} ${run.id || ''}`;
     $('run-phase').textContent = run.phase || '…';
     const f = run.progress || 0;
     $('run-percent').textContent = `${(100 * f).toFixed(0)} %`;
     $('run-bar').value = f;
-    const elapsed = (Date.now() - runStartedAt) / 1000;
-    $('run-left').textContent = f > 0.02 && f < 1 ? `${Math.round(elapsed * (1 - f) / f)} s left` : '';
+    $('run-left').textContent = timeLeft(run.remaining_s);
     showDiagnosis(run.diagnosis_flags || []);
   }
+  if ($('post-runs')) showPostRuns($('post-runs'), s.post_runs);
   const last = s.last_run;
-  if (last && last.id && last.id !== shownRun) {
-    shownRun = last.id;
+  // Shown anew when a new run starts (its predecessor's verdict goes) and when its state moves
+  // on (running, processing, complete: the verdict arrives with the results).
+  const lastKey = last ? `${last.id} ${last.status}` : null;
+  if (last && last.id && lastKey !== shownRun) {
+    shownRun = lastKey;
     showLastRun(last);
   }
 }
