@@ -49,7 +49,9 @@ BenchThread::BenchThread(BenchFactory factory, storage::RunStore& store, RunLaun
       launcher_(launcher),
       config_text_(std::move(config_text)),
       live_(live),
-      stats_observer_(std::make_unique<StatsObserver>(*this)) {}
+      stats_observer_(std::make_unique<StatsObserver>(*this)),
+      post_runs_([this](const std::string& id, const runs::RunOutcome* outcome,
+                        const std::string& error) { post_run_done(id, outcome, error); }) {}
 
 BenchThread::~BenchThread() {
   shutdown("daemon shutting down");
@@ -185,7 +187,7 @@ void BenchThread::run_job(Job& job) {
   {
     std::lock_guard lock(mutex_);
     run_queued_ = false;
-    run_ = ActiveRun{"", procedure, "starting", 0, nlohmann::json::array(), {}};
+    run_ = ActiveRun{"", procedure, "starting", 0, -1, {}, nlohmann::json::array(), {}};
   }
   auto progress = [this, &job](const runs::RunProgress& p) {
     {
@@ -193,10 +195,19 @@ void BenchThread::run_job(Job& job) {
       if (run_) {
         if (run_->run_id.empty() && !p.run_id.empty()) {
           spdlog::info("run {} started ({})", p.run_id, run_->procedure);
+          // The previous run's verdict goes: status says this run is the newest.
+          last_run_ = FinishedRun{p.run_id,
+                                  "running",
+                                  "",
+                                  run_->procedure,
+                                  job.request.unit_serial.empty() && description_
+                                      ? description_->unit_serial
+                                      : job.request.unit_serial,
+                                  ""};
         }
         if (!p.run_id.empty()) run_->run_id = p.run_id;
         run_->phase = p.phase;
-        run_->fraction = p.fraction;
+        run_->stated.report(p.fraction, p.remaining_s);
       }
     }
     if (!p.run_id.empty()) job.settle({StartOutcome::Kind::kStarted, p.run_id, ""});
@@ -214,19 +225,12 @@ void BenchThread::run_job(Job& job) {
   };
   FinishedRun finished;
   try {
-    const auto outcome = launcher_.launch(*bench_, store_, job.request, progress);
-    job.settle({StartOutcome::Kind::kStarted, outcome.run_id, ""});
-    finished = {outcome.run_id, storage::run_status_name(outcome.status), outcome.reason};
-    if (outcome.status == storage::RunStatus::kComplete) {
-      spdlog::info("run {} complete", outcome.run_id);
-    } else {
-      spdlog::warn("run {} {}: {}", outcome.run_id, finished.status, outcome.reason);
-    }
-    if (const auto w = outcome.results.find("warnings"); w != outcome.results.end()) {
-      for (const auto& warning : *w)
-        spdlog::warn("run {}: {}", outcome.run_id,
-                     (warning.is_string() ? warning.get<std::string>() : warning.dump()));
-    }
+    auto recorded = launcher_.record(*bench_, store_, job.request, progress);
+    job.settle({StartOutcome::Kind::kStarted, recorded.run_id, ""});
+    spdlog::info("run {} recorded; its post-run work is queued (about {:.0f} s)",
+                 recorded.run_id, recorded.post_run_estimate_s);
+    finished = {recorded.run_id, "processing", "", recorded.procedure, recorded.unit_serial, ""};
+    post_runs_.push(std::move(recorded));
   } catch (const std::invalid_argument& e) {
     spdlog::warn("run request refused: {}", e.what());
     job.settle({StartOutcome::Kind::kBadRequest, "", e.what()});
@@ -242,7 +246,7 @@ void BenchThread::run_job(Job& job) {
     }
     spdlog::error("run {} failed: {}", id.empty() ? procedure : id, e.what());
     job.settle({StartOutcome::Kind::kFailed, id, e.what()});
-    finished = {id, "failed", e.what()};
+    finished = {id, "failed", e.what(), procedure, job.request.unit_serial, ""};
   }
   try {
     refresh_stats_on_bench_thread();
@@ -250,8 +254,41 @@ void BenchThread::run_job(Job& job) {
   }
   std::lock_guard lock(mutex_);
   run_.reset();
-  last_run_ = finished;
+  // A run of a stand-in launcher may have finished already (its post-run work is nothing).
+  if (!last_run_ || last_run_->run_id != finished.run_id || last_run_->status == "running") {
+    last_run_ = finished;
+  }
   run_ended_.notify_all();
+}
+
+void BenchThread::post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
+                                const std::string& error) {
+  if (outcome) {
+    if (outcome->status == storage::RunStatus::kComplete) {
+      spdlog::info("run {} complete", run_id);
+    } else {
+      spdlog::warn("run {} {}: {}", run_id, storage::run_status_name(outcome->status),
+                   outcome->reason);
+    }
+    if (const auto w = outcome->results.find("warnings"); w != outcome->results.end()) {
+      for (const auto& warning : *w)
+        spdlog::warn("run {}: {}", run_id,
+                     (warning.is_string() ? warning.get<std::string>() : warning.dump()));
+    }
+  }
+  std::lock_guard lock(mutex_);
+  // Only the newest run's end is the last run: an older run finishing in the background does
+  // not bring its verdict back over a newer run.
+  if (!last_run_ || last_run_->run_id != run_id) return;
+  if (outcome) {
+    last_run_->status = storage::run_status_name(outcome->status);
+    last_run_->reason = outcome->reason;
+    const auto v = outcome->results.find("verdict");
+    last_run_->verdict = v != outcome->results.end() && v->is_string() ? v->get<std::string>() : "";
+  } else {
+    last_run_->status = "failed";
+    last_run_->reason = "post-run work failed: " + error;
+  }
 }
 
 void BenchThread::reset_job(Job& job) {
@@ -415,7 +452,13 @@ BenchStatus BenchThread::status() const {
   s.devices = devices_;
   s.connect_error = connect_error_;
   s.run = run_;
+  if (s.run) {
+    const auto now = s.run->stated.at();
+    s.run->fraction = now.fraction;
+    s.run->remaining_s = now.remaining_s;
+  }
   s.last_run = last_run_;
+  s.post_runs = post_runs_.status();
   s.acquisition = acquisition_;
   s.manual = manual_.state();
   if (bench_ && connect_error_.empty()) {
@@ -480,6 +523,8 @@ void BenchThread::shutdown(const std::string& reason) {
   }
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
+  // The bench is safe and disconnected; what was recorded is finished before the daemon ends.
+  post_runs_.drain();
 }
 
 }  // namespace wavebench::daemon

@@ -125,6 +125,15 @@ int wait_for_run(const ClientContext& ctx, const DaemonClient& client, std::stri
       std::this_thread::sleep_for(ctx.poll_interval);
       continue;
     }
+    // Recorded: its results are made in the background; the run has ended when they are.
+    bool processing = false;
+    for (const auto& p : s.value("post_runs", nlohmann::json::array())) {
+      processing = processing || (!id.empty() && text_or(p, "run_id", "") == id);
+    }
+    if (processing) {
+      std::this_thread::sleep_for(ctx.poll_interval);
+      continue;
+    }
     if (id.empty()) {
       *ctx.err << "wavebench: the run ended before it was named: "
                << text_or(s.value("last_run", nlohmann::json::object()), "reason", "?") << "\n";

@@ -422,16 +422,35 @@ nlohmann::json DaemonApi::status_json() const {
         {"procedure", s.run->procedure},
         {"phase", s.run->phase},
         {"progress", s.run->fraction},
+        {"remaining_s",
+         s.run->remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(s.run->remaining_s)},
         {"diagnosis_flags", s.run->diagnosis_flags},
         {"points", s.run->points}};
   } else {
     j["run"] = nullptr;
   }
   if (s.last_run) {
-    j["last_run"] = {
-        {"id", s.last_run->run_id}, {"status", s.last_run->status}, {"reason", s.last_run->reason}};
+    const auto& l = *s.last_run;
+    j["last_run"] = {{"id", l.run_id},
+                     {"status", l.status},
+                     {"reason", l.reason},
+                     {"procedure", l.procedure},
+                     {"unit_serial", l.unit_serial},
+                     {"verdict", l.verdict.empty() ? nlohmann::json(nullptr) : nlohmann::json(l.verdict)}};
   } else {
     j["last_run"] = nullptr;
+  }
+  // Recorded runs whose post-run work (twin, calibration, results, unit twin, report) goes on
+  // in the background, in the order they will finish.
+  j["post_runs"] = nlohmann::json::array();
+  for (const auto& p : s.post_runs) {
+    j["post_runs"].push_back(
+        {{"run_id", p.run_id},
+         {"serial", p.unit_serial},
+         {"procedure", p.procedure},
+         {"phase", p.phase},
+         {"progress", p.fraction},
+         {"remaining_s", p.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(p.remaining_s)}});
   }
   j["acquisition"] = s.acquisition ? acquisition_json(*s.acquisition) : nlohmann::json(nullptr);
   j["live_samples"] = live_.total();
@@ -624,6 +643,15 @@ ApiResponse DaemonApi::run_detail(const std::string& id) const {
                     ? nlohmann::json((paths.dir / "report.html").string())
                     : nlohmann::json(nullptr);
   j["dir"] = paths.dir.string();
+  // Recorded, its results still being made in the background: where that work is.
+  j["post_run"] = nullptr;
+  for (const auto& p : bench_.status().post_runs) {
+    if (p.run_id != id) continue;
+    j["post_run"] = {
+        {"phase", p.phase},
+        {"progress", p.fraction},
+        {"remaining_s", p.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(p.remaining_s)}};
+  }
   return {200, j};
 }
 

@@ -1,4 +1,5 @@
 #include "wavebench/daemon/run_launcher.hpp"
+#include "wavebench/runs/recorded_run.hpp"
 #include "wavebench/runs/run_request_check.hpp"
 
 namespace wavebench::daemon {
@@ -11,6 +12,15 @@ class ExecutorRunLauncher : public RunLauncher {
                           const runs::RunRequest& request,
                           const runs::ProgressSink& progress) override {
     return runs::execute_run(bench, store, request, progress);
+  }
+  RecordedLaunch record(bench::Bench& bench, storage::RunStore& store,
+                        const runs::RunRequest& request,
+                        const runs::ProgressSink& progress) override {
+    auto recorded =
+        std::make_shared<runs::RecordedRun>(runs::record_run(bench, store, request, progress));
+    return {recorded->run_id(), recorded->procedure(), recorded->unit_serial(),
+            recorded->post_run_estimate_s(),
+            [recorded](const runs::ProgressSink& p) { return recorded->finish(p); }};
   }
   void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
              std::size_t extra_channels, const std::filesystem::path& runs_root) const override {

@@ -16,6 +16,19 @@ runs::RunOutcome PublishingRunLauncher::launch(bench::Bench& bench, storage::Run
   return outcome;
 }
 
+RecordedLaunch PublishingRunLauncher::record(bench::Bench& bench, storage::RunStore& store,
+                                             const runs::RunRequest& request,
+                                             const runs::ProgressSink& progress) {
+  auto recorded = inner_->record(bench, store, request, progress);
+  recorded.finish = [finish = std::move(recorded.finish),
+                     &outbox = outbox_](const runs::ProgressSink& p) {
+    auto outcome = finish(p);
+    outbox.enqueue(outcome.run_id);
+    return outcome;
+  };
+  return recorded;
+}
+
 void PublishingRunLauncher::check(const runs::RunRequest& request,
                                   const bench::BenchDescription& bench, std::size_t extra_channels,
                                   const std::filesystem::path& runs_root) const {

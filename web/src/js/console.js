@@ -7,12 +7,12 @@ import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
 import { uncertain } from './dom.js';
 import { SettledPointsPlot } from './settled_points_plot.js';
+import { showPostRuns, timeLeft } from './run_progress.js';
 
 const $ = (id) => document.getElementById(id);
 let loggedIn = false;
 let lastStatus = null;
 let shownRun = null;
-let runStartedAt = null;
 let runId = null;       // the active run's id, once the daemon has named it
 let runActive = false;  // a run was active at the last status
 let shownFlags = '';
@@ -133,10 +133,13 @@ function showRun(s) {
     unit.run = null;
   }
   showProgress(run);
+  if ($('post-runs')) showPostRuns($('post-runs'), s.post_runs);
   if (run) xyPlot.show(run);
   const last = s.last_run;
-  if (!run && last && last.id && last.id !== shownRun) {
-    shownRun = last.id;
+  // Shown anew when its state moves on (processing, then complete: the verdict arrives
+  // with the results).
+  if (!run && last && last.id && runKey(last) !== shownRun) {
+    shownRun = runKey(last);
     showLastRun(last);
   }
 }
@@ -146,7 +149,6 @@ function showRun(s) {
 function newRun(run) {
   runActive = true;
   runId = null;
-  runStartedAt = Date.now();
   clearVerdict();
   xyPlot.clear();
   if (run.id !== null) runNamed(run.id);
@@ -163,13 +165,18 @@ function runNamed(id) {
   }).catch(() => {});
 }
 
+// A finished run as shown: its id and its state (processing, then complete).
+function runKey(last) {
+  return `${last.id} ${last.status}`;
+}
+
 function clearVerdict() {
   $('last-run').hidden = true;
   $('verdict').textContent = '';
   $('verdict').className = 'verdict';
   $('verdict-of').textContent = '';
   $('static-table').hidden = true;
-  if (lastStatus && lastStatus.last_run) shownRun = lastStatus.last_run.id;
+  if (lastStatus && lastStatus.last_run) shownRun = runKey(lastStatus.last_run);
 }
 
 // Progress of the active run: procedure, phase, fraction and an estimate of the time left.
@@ -181,8 +188,7 @@ function showProgress(run) {
   const f = run.progress || 0;
   $('run-percent').textContent = `${(100 * f).toFixed(0)} %`;
   $('run-bar').value = f;
-  const elapsed = (Date.now() - runStartedAt) / 1000;
-  $('run-left').textContent = f > 0.02 && f < 1 ? `${Math.round(elapsed * (1 - f) / f)} s left` : '';
+  $('run-left').textContent = timeLeft(run.remaining_s);
   showDiagnosis(run.diagnosis_flags || []);
 }
 
@@ -226,7 +232,7 @@ async function showLastRun(last) {
   $('static-table').hidden = true;
   try {
     const detail = await get(`/api/runs/${encodeURIComponent(last.id)}`);
-    if (runActive || shownRun !== last.id) return;  // a newer run began meanwhile
+    if (runActive || shownRun !== runKey(last)) return;  // a newer run began meanwhile
     const results = detail.results || {};
     const run = detail.run || {};
     if (results.verdict === 'PASS' || results.verdict === 'FAIL' || results.verdict === 'UNDECIDED') {

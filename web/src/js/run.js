@@ -5,6 +5,7 @@ import { get } from './api.js';
 import { el, num, table, section, verdictOf, specName, uncertain } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
 import { twinDiagnosisSection } from './twin_diagnosis.js';
+import { awaitResults } from './run_progress.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
 const main = document.getElementById('run');
@@ -535,6 +536,11 @@ async function main_() {
   add(twinDiagnosisSection(results));
   add(exportsSection(run, detail));
   main.append(...sections);
+  if (run.status === 'running') {
+    // Recording, or recorded with its results still being made: they arrive when done.
+    awaitResults(detail, message, () => get(`/api/runs/${encodeURIComponent(id)}`),
+      () => window.location.reload());
+  }
   // Plots are drawn once their boxes are laid out (they take the box's width).
   for (const draw of draws) {
     try {

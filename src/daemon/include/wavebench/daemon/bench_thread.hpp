@@ -19,6 +19,7 @@
 #include "wavebench/daemon/daemon_state.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
 #include "wavebench/daemon/manual_session.hpp"
+#include "wavebench/daemon/post_run_queue.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
 #include "wavebench/runs/settled_point.hpp"
 #include "wavebench/storage/run_store.hpp"
@@ -47,7 +48,9 @@ struct ActiveRun {
   std::string run_id;  // empty until the executor has created the run
   std::string procedure;
   std::string phase;
-  double fraction = 0;
+  double fraction = 0;      // of the recording, by time
+  double remaining_s = -1;  // of the recording; negative: not known
+  StatedProgress stated;    // what the executor last said, told forward by status()
   // The twin's diagnosis flags so far (results.json twin.diagnosis.flags[] entries).
   nlohmann::json diagnosis_flags = nlohmann::json::array();
   // A static run's settled positions so far (the console's TE-against-output-angle view); the
@@ -56,10 +59,16 @@ struct ActiveRun {
   std::deque<runs::SettledPoint> points;
 };
 
+// The newest run started: a new run replaces the previous one's verdict at once.
 struct FinishedRun {
   std::string run_id;
-  std::string status;  // complete, aborted, or "failed" when the executor threw
+  // running (recording), processing (its post-run work queued or going on), complete,
+  // aborted, or "failed" when the executor threw
+  std::string status;
   std::string reason;
+  std::string procedure;
+  std::string unit_serial;
+  std::string verdict;  // PASS, FAIL, UNDECIDED; empty: none (yet)
 };
 
 struct BenchStatus {
@@ -72,6 +81,7 @@ struct BenchStatus {
   std::vector<bench::BenchDeviceInfo> devices;
   std::optional<ActiveRun> run;
   std::optional<FinishedRun> last_run;
+  std::vector<PostRunStatus> post_runs;  // recorded runs whose results are still being made
   std::optional<bench::AcquisitionStats> acquisition;  // refreshed on the bench thread
   ManualState manual;                                  // the manual panel (manual_session.hpp)
 };
@@ -121,7 +131,8 @@ class BenchThread {
   CheckOutcome check(std::chrono::milliseconds wait = std::chrono::seconds(60));
   BenchStatus status() const;
   // Trips the bench with `reason` if a run is active, lets the run finish aborted, puts the
-  // bench in its safe state, disconnects and joins. Idempotent.
+  // bench in its safe state, disconnects and joins; then waits for the post-run work of every
+  // recorded run (nothing recorded is left unfinished). Idempotent.
   void shutdown(const std::string& reason);
   // Trips the bench and, unless called on the bench thread itself, waits up to `wait` for the
   // active run to be finished (marked aborted) by the bench thread. For the last resort.
@@ -145,6 +156,8 @@ class BenchThread {
   void idle_until_job(std::unique_lock<std::mutex>& lock);
   void trip(const std::string& reason);
   void refresh_stats_on_bench_thread();
+  void post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
+                     const std::string& error);
 
   BenchFactory factory_;
   BenchCheck check_;
@@ -171,6 +184,8 @@ class BenchThread {
   std::optional<bench::AcquisitionStats> acquisition_;
   ManualSession manual_{[this] { wake_.notify_all(); }};
   std::thread thread_;
+  // Last: destroyed (drained) first, while what its work reports to is still there.
+  PostRunQueue post_runs_;
 };
 
 }  // namespace wavebench::daemon

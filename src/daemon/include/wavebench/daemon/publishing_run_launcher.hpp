@@ -17,6 +17,10 @@ class PublishingRunLauncher : public RunLauncher {
   runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
                           const runs::RunRequest& request,
                           const runs::ProgressSink& progress) override;
+  // The run goes to the outbox when its post-run work has finished it.
+  RecordedLaunch record(bench::Bench& bench, storage::RunStore& store,
+                        const runs::RunRequest& request,
+                        const runs::ProgressSink& progress) override;
   void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
              std::size_t extra_channels, const std::filesystem::path& runs_root) const override;
 

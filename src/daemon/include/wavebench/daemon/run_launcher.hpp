@@ -4,13 +4,25 @@
 
 #include <cstddef>
 #include <filesystem>
+#include <functional>
 #include <memory>
+#include <string>
 
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
+
+// A run whose recording has ended (the bench inactive, its samples on disk) and whose post-run
+// work is still to do: `finish` runs it, on the post-run worker, never on the bench thread.
+struct RecordedLaunch {
+  std::string run_id;
+  std::string procedure;
+  std::string unit_serial;
+  double post_run_estimate_s = 0;  // wall seconds
+  std::function<runs::RunOutcome(const runs::ProgressSink&)> finish;
+};
 
 class RunLauncher {
  public:
@@ -20,6 +32,15 @@ class RunLauncher {
   virtual runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
                                   const runs::RunRequest& request,
                                   const runs::ProgressSink& progress) = 0;
+  // The recording only (runs::record_run); the rest in the returned finish. By default the
+  // whole of launch(), with nothing left to finish (the stand-ins of the tests).
+  virtual RecordedLaunch record(bench::Bench& bench, storage::RunStore& store,
+                                const runs::RunRequest& request,
+                                const runs::ProgressSink& progress) {
+    auto outcome = launch(bench, store, request, progress);
+    return {outcome.run_id, request.procedure, request.unit_serial, 0,
+            [outcome](const runs::ProgressSink&) { return outcome; }};
+  }
   // The checks launch() makes before anything is created or moves, without the bench: called
   // on an API thread before a request is queued, so a malformed or over-limit request is
   // refused (400) whatever the bench is doing. Thread-safe. Throws std::invalid_argument

@@ -56,7 +56,10 @@ void check_run_identity(const RunRequest& request);
 struct RunProgress {
   std::string run_id;
   std::string phase;    // e.g. "static forward 0 N·m", "dynamic run-in", "twin calibration"
-  double fraction = 0;  // 0..1 of the whole run
+  double fraction = 0;  // 0..1 of the part reporting it: the recording, or the post-run work
+  // Wall seconds left of that part, estimated from the procedure's plan and the pace so far
+  // (recording) or from the record's length (post-run); negative: not known.
+  double remaining_s = -1;
 };
 
 struct RunOutcome {
@@ -69,6 +72,8 @@ struct RunOutcome {
 
 using ProgressSink = std::function<void(const RunProgress&)>;
 
+// record_run() then RecordedRun::finish() beside the bench (recorded_run.hpp), in sequence:
+// for callers with no next unit waiting (`wavebench run`, tests).
 // Throws std::invalid_argument naming the option key, its value and what was expected when
 // the request is bad (nothing is created then). A bench trip during the run is not an
 // exception: the outcome is kAborted with the trip's reason, the data so far kept on disk.
