@@ -131,10 +131,22 @@ void write_results_if_possible(storage::RunStore& store, const std::string& id,
 }
 
 // results.json "spec": what the verdict was judged against.
+// The bench's measuring devices with the calibration its config states (null: not stated).
+nlohmann::json sensors_json(const std::vector<bench::SensorCalibration>& sensors) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : sensors) {
+    out.push_back({{"sensor", s.sensor},
+                   {"calibration_id", s.id.empty() ? nlohmann::json() : nlohmann::json(s.id)},
+                   {"calibration_due", s.due.empty() ? nlohmann::json() : nlohmann::json(s.due)}});
+  }
+  return out;
+}
+
 nlohmann::json spec_json(const ProductSpec& spec) {
   const auto j = spec.to_json();
   return {{"name", j["name"]},
           {"model", j["model"]},
+          {"description", j["description"]},
           {"lost_motion_at_percent", j["lost_motion_at_percent"]},
           {"undecided", j["undecided"]},
           {"limits", j["limits"]}};
@@ -173,6 +185,7 @@ RunOutcome execute_run(bench::Bench& bench, storage::RunStore& store, const RunR
       {"operator", request.operator_name.empty() ? nlohmann::json(nullptr)
                                                  : nlohmann::json(request.operator_name)},
       {"bench", description.name},
+      {"bench_sensors", sensors_json(description.sensors)},
       {"software_version", software_version()},
       {"software_commit", software_commit()},
       {"gear",
