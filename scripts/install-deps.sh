@@ -13,7 +13,7 @@ packages=(
   can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
   python3-jsonschema
   octave python3-h5py
-  chromium chromium-driver python3-selenium
+  chromium chromium-driver python3-selenium poppler-utils
 )
 if [[ "${1:-}" == "--with-vm" ]]; then
   packages+=(qemu-system-x86 busybox-static cpio kmod)

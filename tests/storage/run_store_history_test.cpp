@@ -114,6 +114,25 @@ TEST_F(RunHistory, FiltersCombine) {
   EXPECT_EQ(store_->count_runs(today), 0u);
 }
 
+// The history's unit filter is a prefix; LIKE's own wildcards in it are characters.
+TEST_F(RunHistory, AUnitPrefixFindsTheSerialsStartingWithItAndNoWildcardsInIt) {
+  const auto a = store_->create_run("static", "0042-A", "cfg", "{}", "");
+  const auto x = store_->create_run("static", "0042_X", "cfg", "{}", "");
+  const auto p = store_->create_run("static", "0042%", "cfg", "{}", "");
+  store_->create_run("static", "1042-A", "cfg", "{}", "");
+  RunQuery q;
+  q.unit_serial_prefix = "0042";
+  EXPECT_EQ(ids_of(store_->list_runs(q)), (std::vector<std::string>{p, x, a}));
+  q.unit_serial_prefix = "0042_";
+  EXPECT_EQ(ids_of(store_->list_runs(q)), (std::vector<std::string>{x}));
+  q.unit_serial_prefix = "0042%";
+  EXPECT_EQ(ids_of(store_->list_runs(q)), (std::vector<std::string>{p}));
+  q.unit_serial_prefix = "\\";
+  EXPECT_TRUE(store_->list_runs(q).empty());
+  q.unit_serial_prefix = "0042";
+  EXPECT_EQ(store_->count_runs(q), 3U);
+}
+
 TEST_F(RunHistory, TheRecordCarriesSpecAndVerdict) {
   const auto first = to_json(*store_->find_run(ids_[0]));
   EXPECT_EQ(first["spec"], "csf-25-100");

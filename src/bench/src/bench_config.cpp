@@ -219,8 +219,37 @@ void read_drive_units(YamlSection& s, DriveSettings& d) {
   }
 }
 
+bool iso_date(const std::string& v) {
+  const auto digit = [&](std::size_t i) { return v[i] >= '0' && v[i] <= '9'; };
+  if (v.size() != 10 || v[4] != '-' || v[7] != '-') return false;
+  for (const std::size_t i : {0, 1, 2, 3, 5, 6, 8, 9})
+    if (!digit(i)) return false;
+  const int month = std::stoi(v.substr(5, 2)), day = std::stoi(v.substr(8, 2));
+  return month >= 1 && month <= 12 && day >= 1 && day <= 31;
+}
+
+// The optional `calibration: {id, due}` of a measuring device, for certificates.
+SensorCalibration read_calibration(YamlSection& device, const char* sensor) {
+  SensorCalibration cal;
+  cal.sensor = sensor;
+  auto s = device.optional_section("calibration");
+  if (!s) return cal;
+  cal.id = s->text("id");
+  if (cal.id.empty() || cal.id.size() > 64) {
+    s->fail("id", cal.id.substr(0, 40), "a calibration certificate number of 1 to 64 characters");
+  }
+  cal.due = s->text("due");
+  if (!iso_date(cal.due)) s->fail("due", cal.due, "a date YYYY-MM-DD (the next calibration)");
+  s->finish();
+  return cal;
+}
+
 void read_devices(YamlSection& root, BenchConfig& c, const std::filesystem::path& base) {
+  auto& sensors = c.description.sensors;
+  sensors = {
+      {"input encoder (drive)", {}, {}}, {"output encoder", {}, {}}, {"torque sensor", {}, {}}};
   if (auto s = root.optional_section("drive")) {
+    sensors[0] = read_calibration(*s, "input encoder (drive)");
     read_expectations(*s, base, c.drive.expect);
     set_if(s->optional_integer("counts_per_revolution", 1, 1LL << 31),
            c.drive.counts_per_revolution);
@@ -231,6 +260,7 @@ void read_devices(YamlSection& root, BenchConfig& c, const std::filesystem::path
     s->finish();
   }
   if (auto s = root.optional_section("encoder")) {
+    sensors[1] = read_calibration(*s, "output encoder");
     read_expectations(*s, base, c.encoder.expect);
     set_if(s->optional_integer("counts_per_turn", 2, 1LL << 31), c.encoder.counts_per_turn);
     set_if(s->optional_integer("turns", 1, 1LL << 20), c.encoder.turns);
@@ -241,6 +271,7 @@ void read_devices(YamlSection& root, BenchConfig& c, const std::filesystem::path
   }
   bool torque_type_given = false;
   if (auto s = root.optional_section("torque_sensor")) {
+    sensors[2] = read_calibration(*s, "torque sensor");
     read_expectations(*s, base, c.torque_sensor.expect);
     auto& sensor = c.torque_sensor.sensor;
     read_object(*s, sensor.index, sensor.sub);

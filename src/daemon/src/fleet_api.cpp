@@ -82,7 +82,7 @@ ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
     fleet::FleetRunQuery q;
     q.gear_model = text(t, "model");
     q.bench = text(t, "bench");
-    q.unit_serial = text(t, "unit");
+    q.unit_serial_prefix = text(t, "unit");  // "0042" finds "0042-A", as the history does
     q.procedure = text(t, "procedure");
     q.verdict = text(t, "verdict");
     q.from = text(t, "from");

@@ -103,7 +103,7 @@ storage::RunQuery parse_run_history_query(const std::map<std::string, std::strin
       }
       q.procedure = value;
     } else if (key == "unit") {
-      q.unit_serial = text(key, value);
+      q.unit_serial_prefix = text(key, value);  // "0042" finds "0042-A"
     } else if (key == "spec") {
       const bool ok = !value.empty() && value.size() <= kMaxSpecName &&
                       std::all_of(value.begin(), value.end(), [](char c) {

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "utc_time_text.hpp"
+#include "wavebench/storage/like_prefix.hpp"
 
 namespace wavebench::fleet {
 
@@ -81,6 +82,10 @@ SqlQuery runs_query(const FleetRunQuery& q, const SqlDialect& dialect) {
   where.add("gear_model = @", q.gear_model);
   where.add("bench = @", q.bench);
   where.add("unit_serial = @", q.unit_serial);
+  if (q.unit_serial_prefix) {
+    where.add(std::string("unit_serial LIKE @") + storage::kLikeEscapeClause,
+              storage::like_prefix_pattern(*q.unit_serial_prefix));
+  }
   where.add("procedure = @", q.procedure);
   where.add("spec = @", q.spec);
   where.add("verdict = @", q.verdict);

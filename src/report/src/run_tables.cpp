@@ -270,7 +270,11 @@ void add_limit_rows(HtmlTable& table, const RunFolder& run) {
         u && !(c.contains("uncertainty_stated") && c["uncertainty_stated"] == false)) {
       measured += " \u00b1 " + general(*u, 2);
     }
-    table.rows.push_back({{text(c, "limit"), {}, false},
+    // The verdict table's display name and unit (older runs: the limit key).
+    const std::string name = c.contains("name")
+                                 ? text(c, "name") + " [" + text(c, "display_unit") + "]"
+                                 : text(c, "limit");
+    table.rows.push_back({{name, {}, false},
                           {text(c, "what"), {}, false},
                           {gnum(c, "value"), {}, false},
                           {measured, {}, false},

@@ -99,11 +99,23 @@ nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
           {"bench_bus_load", a.bus_load}};
 }
 
+// The bench's measuring devices with the calibration its config states (null: not stated).
+nlohmann::json sensors_json(const std::vector<bench::SensorCalibration>& sensors) {
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& s : sensors) {
+    out.push_back({{"sensor", s.sensor},
+                   {"calibration_id", s.id.empty() ? nlohmann::json() : nlohmann::json(s.id)},
+                   {"calibration_due", s.due.empty() ? nlohmann::json() : nlohmann::json(s.due)}});
+  }
+  return out;
+}
+
 // results.json "spec": what the verdict was judged against.
 nlohmann::json spec_json(const ProductSpec& spec) {
   const auto j = spec.to_json();
   return {{"name", j["name"]},
           {"model", j["model"]},
+          {"description", j["description"]},
           {"lost_motion_at_percent", j["lost_motion_at_percent"]},
           {"undecided", j["undecided"]},
           {"limits", j["limits"]}};
@@ -119,6 +131,7 @@ nlohmann::json results_head(const RunContext& c, const bench::Bench& bench) {
           {"operator",
            r.operator_name.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.operator_name)},
           {"bench", d.name},
+          {"bench_sensors", sensors_json(d.sensors)},
           {"software_version", software_version()},
           {"software_commit", software_commit()},
           {"gear", {{"ratio", d.sense.ratio}, {"direction_sign", d.sense.direction_sign}}},

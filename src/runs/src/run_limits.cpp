@@ -80,6 +80,8 @@ LimitVerdict check_limits(const nlohmann::json& limits, const nlohmann::json& re
                                         : procedures::decide_upper_limit(figure, limit);
       const auto pass = acceptance(decision, undecided);
       v.checks.push_back({{"limit", row.limit},
+                          {"name", row.display_name},
+                          {"display_unit", row.display_unit},
                           {"value", limit},
                           {"measured", figure.value},
                           {"expanded", figure.expanded()},

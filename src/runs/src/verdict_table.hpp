@@ -29,6 +29,10 @@ struct VerdictFigure {
   const char* path;  // in results.json
   bool minimum;      // a lower limit (stiffness); otherwise an upper one
   bool absolute;     // judged on the figure's magnitude (a mean TE of either sign)
+  // What a certificate, the run page and the report call the figure and its unit: written
+  // here once and carried into results.json's limit_checks ("name", "display_unit").
+  const char* display_name;  // "Static TE, peak-to-peak"
+  const char* display_unit;  // "arcmin", "N·m/rad"
 };
 
 std::span<const VerdictFigure> verdict_figures();

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "wavebench/storage/atomic_file.hpp"
+#include "wavebench/storage/like_prefix.hpp"
 #include "wavebench/storage/sha256.hpp"
 
 namespace wavebench::storage {
@@ -175,6 +176,10 @@ Filters filters_of(const RunQuery& q) {
   };
   add("procedure = ?", q.procedure);
   add("unit_serial = ?", q.unit_serial);
+  if (q.unit_serial_prefix) {
+    add((std::string("unit_serial LIKE ?") + kLikeEscapeClause).c_str(),
+        like_prefix_pattern(*q.unit_serial_prefix));
+  }
   if (q.status) add("status = ?", std::string(run_status_name(*q.status)));
   add("spec = ?", q.spec);
   add("id >= ?", q.from_id);

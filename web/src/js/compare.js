@@ -1,9 +1,10 @@
 // Compare runs (/compare?ids=a,b,...): their static TE curves, lost-motion curves and dynamic
 // TE order spectra on one plot each, one colour per run (two units, or one unit before and
 // after run-in). Sections come from each run's results.json keys (docs/formats/results.md).
-import { get } from './api.js';
-import { el, num, table, section, verdictOf, specName, uncertain } from './dom.js';
+import { el, num, table, section, verdictOf, specName } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
+import { uncertain, figureText, utcSeconds } from './figures.js';
+import { readRun } from './run_reads.js';
 
 const main = document.getElementById('compare');
 const message = document.getElementById('message');
@@ -15,8 +16,7 @@ const maxOf = (values) => {
 };
 
 function label(run) {
-  const when = (run.started_at || run.id).replace('T', ' ').replace(/(\.\d+)?Z?$/, '');
-  return `${run.unit_serial || '?'} ${when}`;
+  return `${run.unit_serial || '?'} ${utcSeconds(run.started_at || run.id).replace(' UTC', '')}`;
 }
 
 // Figures with their expanded uncertainty (k = 2), as the run page shows them: two units are
@@ -31,7 +31,7 @@ function staticP2pMax(results) {
 function lostMotion(results) {
   // The catalogues' figure (locked output) first, then the brake ladder's fit.
   const t = results.torsional && results.torsional.lost_motion_arcmin;
-  if (t && t.value != null) return t.expanded != null ? `${num(t.value)} ± ${num(t.expanded, 2)}` : num(t.value);
+  if (t && t.value != null) return figureText(t);
   if (results.lost_motion_fit) return uncertain(results.lost_motion_fit, 'lost_motion_arcmin');
   return num(maxOf((results.lost_motion || []).map((l) => l.max_arcmin)));
 }
@@ -60,7 +60,14 @@ function plotSection(id, title, caption) {
 async function main_() {
   if (ids.length < 2) throw new Error('Pick two or more runs in the history to compare (/compare?ids=a,b).');
   if (ids.length > 12) throw new Error(`${ids.length} runs: compare at most 12 at once.`);
-  const details = await Promise.all(ids.map((id) => get(`/api/runs/${encodeURIComponent(id)}`)));
+  // Queued, two at a time, a busy answer retried (run_reads.js): any number of runs loads.
+  let loaded = 0;
+  message.textContent = `Loading ${ids.length} runs…`;
+  const details = await Promise.all(ids.map((id) => readRun(`/api/runs/${encodeURIComponent(id)}`).then((d) => {
+    loaded += 1;
+    message.textContent = `Loading runs: ${loaded} of ${ids.length}…`;
+    return d;
+  })));
   const runs = details.map((d, i) => ({ run: d.run, results: d.results || {}, color: palette[i % palette.length] }));
   message.hidden = true;
   main.append(summary(runs));

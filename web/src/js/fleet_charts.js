@@ -1,23 +1,29 @@
-// The fleet page's answer drawn: the trend (one colour per bench, x the unit sequence), the
+// The fleet page's answer drawn: the trend (one colour per bench, x the run's start date), the
 // SPC table and the individuals chart with its control limits (mean ± 2.66 MR-bar) and the
-// spec limits, from GET /api/fleet/spc (docs/api.md).
+// spec limits, from GET /api/fleet/spc (docs/api.md). Points outside the spec limits are
+// marked (a red ring) on both charts.
 import { el, num, table, section } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
+import { utcSeconds } from './figures.js';
 
-// Tick labels with the decimals the tick step needs: a figure that varies in its fourth
-// decimal gets four (uPlot's default stops at three, and the ticks repeat).
-function stepTicks(u, splits, axis, space, step) {
-  let decimals = Math.max(0, -Math.floor(Math.log10(step)));
-  const scaled = step * 10 ** decimals;
-  if (Math.abs(scaled - Math.round(scaled)) > 1e-6) decimals += 1;
-  return splits.map((v) => (v == null ? '' : v.toFixed(Math.min(decimals, 12))));
+// Fewer runs than this: capability indices are too uncertain to act on (the usual rule of
+// thumb for a first capability study is 25 or more subgroups).
+export const SPC_MIN_RUNS = 25;
+
+const OUT_OF_SPEC = '#b3261e';
+
+function outOfSpec(answer, v) {
+  const lim = answer.limits || {};
+  return v != null && ((lim.upper != null && v > lim.upper) || (lim.lower != null && v < lim.lower));
 }
+
+const epochSeconds = (p) => Date.parse(p.started_at) / 1000;
 
 // The unit sequence is counted: whole ticks only.
 const WHOLE = [1, 2, 5, 10, 20, 50, 100, 200, 500, 1000, 2000, 5000, 10000, 20000, 50000, 100000];
 
 function when(point) {
-  return (point.started_at || '').replace('T', ' ').replace(/(\.\d+)?Z?$/, '');
+  return utcSeconds(point.started_at).replace(' UTC', '');
 }
 
 function plotFigure(id, caption, points) {
@@ -32,15 +38,24 @@ export function trendSection(answer, figure, model) {
   const benches = [...new Set(answer.points.map((p) => p.bench))].sort();
   const pairs = benches.map((b) => {
     const mine = answer.points.filter((p) => p.bench === b);
-    return [mine.map((p) => p.sequence), mine.map((p) => p.value)];
+    return [mine.map(epochSeconds), mine.map((p) => p.value)];
   });
   const series = benches.map((b, i) => ({ label: b, color: palette[i % palette.length], points: true }));
+  const outside = answer.points.filter((p) => outOfSpec(answer, p.value));
+  if (outside.length) {
+    pairs.push([outside.map(epochSeconds), outside.map((p) => p.value)]);
+    series.push({ label: `out of spec (${outside.length})`, color: OUT_OF_SPEC, points: true, marker: 'ring' });
+  }
   const { figure: fig, area } = plotFigure('trend-plot',
-    `${figure.name} [${figure.unit}] of ${model}, oldest first; one colour per bench`, answer.points.length);
+    `${figure.name} [${figure.unit}] of ${model} against the run's start (UTC); one colour per bench${outside.length ? '; out of spec: red rings' : ''}`, answer.points.length);
+  fig.dataset.outOfSpec = String(outside.length);
   const s = section('trend', `Trend (${answer.points.length} runs, ${benches.length} ${benches.length === 1 ? 'bench' : 'benches'})`, fig);
-  const draw = () => makePlot(area, { xLabel: 'unit sequence', yLabel: `${figure.name} [${figure.unit}]`, series, data: joinSeries(pairs), yAxisSize: 90, yValues: stepTicks, xIncrs: WHOLE });
+  const draw = () => makePlot(area, { xLabel: 'run started (UTC)', yLabel: `${figure.name} [${figure.unit}]`, series, data: joinSeries(pairs), xTime: true });
   return { section: s, draw };
 }
+
+// Capability indices to two decimals: a third one is noise at any realistic n.
+const index = (v) => Number(v).toFixed(2);
 
 function spcRows(answer) {
   const s = answer.spc;
@@ -55,10 +70,10 @@ function spcRows(answer) {
     ['lcl', 'LCL (mean − 2.66 MR-bar)', s.lcl],
     ['lsl', `LSL (${answer.limits_from})`, lim.lower],
     ['usl', `USL (${answer.limits_from})`, lim.upper],
-    ['cp', 'Cp (within)', s.cp],
-    ['cpk', 'Cpk (within)', s.cpk],
-    ['pp', 'Pp (overall)', s.pp],
-    ['ppk', 'Ppk (overall)', s.ppk],
+    ['cp', 'Cp (within)', s.cp, index],
+    ['cpk', 'Cpk (within)', s.cpk, index],
+    ['pp', 'Pp (overall)', s.pp, index],
+    ['ppk', 'Ppk (overall)', s.ppk, index],
     ['out_of_control', 'points outside UCL/LCL', s.out_of_control.length, (v) => String(v)],
   ];
 }
@@ -69,6 +84,11 @@ export function spcSection(answer, figure) {
       `${answer.points.length} run${answer.points.length === 1 ? '' : 's'}: SPC needs at least 2.`)), draw: () => {} };
   }
   const rows = spcRows(answer);
+  const n = answer.spc.n;
+  const few = n < SPC_MIN_RUNS
+    ? el('p', { class: 'fleet-warning', id: 'spc-warning', role: 'note' },
+      `Only ${n} run${n === 1 ? '' : 's'}: Cp, Cpk, Pp and Ppk from fewer than ${SPC_MIN_RUNS} runs are rough estimates; do not judge the process capable or not on them.`)
+    : null;
   const spcTable = el('table', { id: 'spc-table' }, el('tbody', {}, rows.map(([key, label, value, show]) =>
     el('tr', { 'data-key': key },
       el('th', {}, label),
@@ -116,14 +136,19 @@ export function spcSection(answer, figure) {
   if (outside.length) {
     const marked = new Set(s.out_of_control);
     data.push(y.map((v, i) => (marked.has(i) ? v : null)));
-    series.push({ label: 'outside', color: '#b3261e', points: true });
+    series.push({ label: 'outside control limits', color: '#c77700', points: true });
+  }
+  const specOut = y.map((v) => (outOfSpec(answer, v) ? v : null));
+  if (specOut.some((v) => v != null)) {
+    data.push(specOut);
+    series.push({ label: 'out of spec', color: OUT_OF_SPEC, points: true, marker: 'ring' });
   }
   const { figure: fig, area } = plotFigure('individuals-plot',
     'Individuals chart: values, centre line and control limits (dashed grey), spec limits (dotted red)', answer.points.length);
   const beyond = notDrawn.length
     ? el('p', { class: 'note', id: 'limits-not-drawn' }, `Not drawn: ${notDrawn.join(', ')}.`)
     : null;
-  const sec = section('spc', 'SPC', spcTable, fig, beyond, el('h3', {}, 'Outside the control limits'), outsideTable);
-  const draw = () => makePlot(area, { xLabel: 'unit sequence', yLabel: `${figure.name} [${figure.unit}]`, series, data, yAxisSize: 90, yValues: stepTicks, xIncrs: WHOLE });
+  const sec = section('spc', 'SPC', few, spcTable, fig, beyond, el('h3', {}, 'Outside the control limits'), outsideTable);
+  const draw = () => makePlot(area, { xLabel: 'run number (oldest first)', yLabel: `${figure.name} [${figure.unit}]`, series, data, xIncrs: WHOLE });
   return { section: sec, draw };
 }

@@ -1,8 +1,9 @@
-// The history page (/history): runs filtered by unit, procedure, spec, verdict, status and
-// date, a page at a time (GET /api/runs with offset/limit; total when the API gives it), with
-// links to each run's page and exports; tick two or more to compare them (/compare?ids=...).
+// The history page (/history): runs filtered by unit serial (a prefix: "0042" finds "0042-A"),
+// procedure, spec, verdict, status and date, a page at a time (GET /api/runs with offset/limit;
+// total when the API gives it), with links to each run's page and exports; tick two or more to compare them (/compare?ids=...).
 import { get } from './api.js';
 import { el, verdictOf, specName } from './dom.js';
+import { utcSeconds } from './figures.js';
 
 const form = document.getElementById('filters');
 const body = document.querySelector('#runs tbody');
@@ -47,7 +48,7 @@ function row(run) {
   const api = `/api/runs/${encodeURIComponent(run.id)}`;
   return el('tr', { 'data-id': run.id },
     el('td', {}, box),
-    el('td', {}, el('a', { href: `/run?id=${encodeURIComponent(run.id)}` }, (run.started_at || run.id).replace('T', ' ').replace(/\.\d+Z?$/, ''))),
+    el('td', {}, el('a', { href: `/run?id=${encodeURIComponent(run.id)}` }, utcSeconds(run.started_at || run.id).replace(' UTC', ''))),
     el('td', {}, run.unit_serial || '–'),
     el('td', {}, run.procedure),
     el('td', {}, specName(run, null) || '–'),

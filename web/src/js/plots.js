@@ -64,25 +64,55 @@ function wheelAndPanPlugin() {
   };
 }
 
-// series: [{label, color?, points?: true, width?, dash?}], data: [x, y1, y2, ...].
+// Tick labels with the decimals the tick step needs: a figure that varies in its fourth
+// decimal gets four (uPlot's default stops at three, and the ticks repeat), and 600 reads
+// "600", not "600.0".
+export function stepTicks(u, splits, axis, space, step) {
+  if (!(step > 0)) return splits.map((v) => (v == null ? '' : String(v)));
+  let decimals = Math.max(0, -Math.floor(Math.log10(step)));
+  const scaled = step * 10 ** decimals;
+  if (Math.abs(scaled - Math.round(scaled)) > 1e-6) decimals += 1;
+  return splits.map((v) => (v == null ? '' : v.toFixed(Math.min(decimals, 12))));
+}
+
+const AXIS_FONT = '12px system-ui, "DejaVu Sans", sans-serif';
+const LABEL_FONT = 'bold 12px system-ui, "DejaVu Sans", sans-serif';
+let measure = null;
+
+// The y axis as wide as its widest tick label (plus the axis title): labels are never clipped.
+function axisSize(u, values, axisIdx, cycleNum) {
+  if (cycleNum > 2 || !values) return u.axes[axisIdx]._size || 60;
+  if (!measure) measure = document.createElement('canvas').getContext('2d');
+  measure.font = AXIS_FONT;
+  const widest = Math.max(0, ...values.map((v) => measure.measureText(String(v ?? '')).width));
+  return Math.ceil(widest) + 12 + 22;  // ticks + gap, and the rotated axis title
+}
+
+// series: [{label, color?, points?: true, width?, dash?, marker?: 'ring'}], data: [x, y1, ...].
 // Options: xLabel, yLabel, logY, height, labels (() => [{x, y, text}]), onZoom(min, max)
-// (called, debounced, after the x range changes), yAxisSize (px for the y tick labels; 60),
-// yValues (uPlot's axis `values`: the y tick labels), xIncrs (the x tick steps allowed).
-export function makePlot(container, { xLabel, yLabel, series, data, logY, height, labels, onZoom, yAxisSize, yValues, xIncrs }) {
+// (called, debounced, after the x range changes), yValues (uPlot's axis `values`: the y tick
+// labels; stepTicks by default), xIncrs (the x tick steps allowed), xTime (x is seconds since
+// 1970: dates and times in UTC on the axis). A 'ring' marker is a large open circle: the
+// points a chart marks (out of spec), told apart from the others by shape, not colour alone.
+export function makePlot(container, { xLabel, yLabel, series, data, logY, height, labels, onZoom, yValues, xIncrs, xTime }) {
+  const axis = { stroke: '#333', grid: { stroke: '#e4e4e4' }, ticks: { stroke: '#bbb' }, font: AXIS_FONT, labelFont: LABEL_FONT };
   const opts = {
     width: Math.max(300, container.clientWidth || 800),
     height: height || 300,
     cursor: { drag: { x: true, y: false, setScale: true } },
-    scales: { x: { time: false }, y: logY ? { distr: 3 } : {} },
-    axes: [{ label: xLabel, stroke: '#333', grid: { stroke: '#e4e4e4' }, ...(xIncrs ? { incrs: xIncrs } : {}) },
-      { label: yLabel, stroke: '#333', grid: { stroke: '#e4e4e4' }, size: yAxisSize || 60, ...(yValues ? { values: yValues } : {}) }],
+    scales: { x: { time: !!xTime }, y: logY ? { distr: 3 } : {} },
+    ...(xTime ? { tzDate: (ts) => uPlot.tzDate(new Date(ts * 1e3), 'Etc/UTC') } : {}),
+    axes: [{ ...axis, label: xLabel, space: 70, size: 50, ...(xIncrs ? { incrs: xIncrs } : {}), ...(xTime ? {} : { values: stepTicks }) },
+      { ...axis, label: yLabel, space: 28, size: axisSize, ...(logY ? {} : { values: yValues || stepTicks }) }],
     series: [{ label: xLabel }, ...series.map((s, i) => ({
       label: s.label,
       stroke: s.color || palette[i % palette.length],
       width: s.width || 1.5,
       dash: s.dash,
       spanGaps: s.spanGaps ?? false,
-      points: s.points ? { show: true, size: 6, fill: s.color || palette[i % palette.length] } : { show: false },
+      points: s.marker === 'ring'
+        ? { show: true, size: 13, width: 2.5, fill: '#fff', stroke: s.color || '#b3261e' }
+        : s.points ? { show: true, size: 6, fill: s.color || palette[i % palette.length] } : { show: false },
       ...(s.points && !s.line ? { paths: () => null } : {}),
       value: (u, v) => (v == null ? '–' : Number(v).toPrecision(5)),
     }))],

@@ -1,16 +1,19 @@
 // The run page (/run?id=...): a run's header, its tables and interactive plots, read from
 // GET /api/runs/{id} by the results schema (docs/formats/results.md): each section is read
 // from its own key, never guessed from its shape. Prints as an A4 test certificate.
-import { get } from './api.js';
-import { el, num, table, section, verdictOf, specName, uncertain } from './dom.js';
+import { el, num, table, section, verdictOf, specName } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
 import { twinDiagnosisSection } from './twin_diagnosis.js';
 import { awaitResults } from './run_progress.js';
+import { uncertain, plusMinus, figureText, utcSeconds, limitName } from './figures.js';
+import { readRun } from './run_reads.js';
+import { exportButtons } from './run_exports.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
 const main = document.getElementById('run');
 const message = document.getElementById('message');
 document.getElementById('print').addEventListener('click', () => window.print());
+document.getElementById('certificate').href = `/certificate?id=${encodeURIComponent(id)}`;
 
 const plotWidth = (box) => Math.max(300, Math.min(2000, box.clientWidth || 800));
 
@@ -21,7 +24,8 @@ function header(run, results) {
   const fact = (label, value, cls) => [el('dt', {}, label), el('dd', { class: cls }, value ?? '–')];
   const spec = specName(run, results);
   return el('section', { class: 'run-head' },
-    el('div', { class: 'certificate-title' }, 'Transmission test certificate'),
+    // On paper this page is the run's record; the certificate is a page of its own.
+    el('div', { class: 'certificate-title' }, 'Transmission test record (not a certificate)'),
     el('h1', {}, `${r.procedure || run.procedure} run ${run.id}`),
     el('div', { class: 'head-grid' },
       el('dl', { class: 'facts' },
@@ -29,8 +33,8 @@ function header(run, results) {
         fact('Spec', spec ? `${spec}${r.spec && r.spec.model ? ` (${r.spec.model})` : ''}` : null),
         fact('Operator', r.operator ?? run.operator),
         fact('Bench', r.bench),
-        fact('Started', run.started_at),
-        fact('Finished', run.finished_at || null),
+        fact('Started', utcSeconds(run.started_at)),
+        fact('Finished', run.finished_at ? utcSeconds(run.finished_at) : null),
         fact('Status', status, `status-${run.status}`),
         fact('Software', r.software_version || run.software_version),
         fact('Config hash', run.config_hash ? run.config_hash.slice(0, 16) : null, 'mono'),
@@ -38,7 +42,8 @@ function header(run, results) {
         fact('Repeats', Array.isArray(r.repeats) ? `${r.repeats.length} (figures are their mean; the spread is in each ± U)` : null)),
       el('div', { class: `verdict verdict-${(verdict || 'none').toLowerCase()}`, id: 'verdict',
         title: verdict === 'UNDECIDED' ? `a limit lies inside a figure's uncertainty interval; counts as ${r.undecided_counts_as || 'fail'} for acceptance` : null },
-      verdict || 'no verdict')));
+      verdict || 'no verdict')),
+    exportButtons(run));
 }
 
 function limitChecks(results) {
@@ -46,9 +51,9 @@ function limitChecks(results) {
   if (!Array.isArray(checks) || !checks.length) return null;
   return section('limit-checks', 'Limit checks',
     table([
-      { label: 'Limit', value: (c) => c.limit },
-      { label: 'What', value: (c) => c.what },
-      { label: 'Measured ± U (k = 2)', value: (c) => (c.expanded != null && c.uncertainty_stated !== false ? `${num(c.measured)} ± ${num(c.expanded, 2)}` : num(c.measured)), class: 'n' },
+      { label: 'Figure', value: (c) => el('span', { title: c.limit }, limitName(c)) },
+      { label: 'Where', value: (c) => c.what },
+      { label: 'Measured ± U (k = 2)', value: (c) => (c.uncertainty_stated !== false ? plusMinus(c.measured, c.expanded) : num(c.measured)), class: 'n' },
       { label: limitValueLabel(checks), value: (c) => num(c.value), class: 'n' },
       { label: 'Decision', value: (c) => decisionCell(c) },
     ], checks, { id: 'limit-table' }));
@@ -150,7 +155,7 @@ function traceSection(run, title, channel) {
     const columns = Math.min(4000, plotWidth(area));
     const range = from == null ? '' : `&from_s=${Math.max(0, from)}&to_s=${Math.max(0, to)}`;
     const mine = ++seq;
-    const t = await get(`/api/runs/${encodeURIComponent(run.id)}/trace?channels=${current}&columns=${columns}${range}`);
+    const t = await readRun(`/api/runs/${encodeURIComponent(run.id)}/trace?channels=${current}&columns=${columns}${range}`);
     if (mine !== seq) return;
     fetched = [t.from_s, t.to_s];
     note.textContent = t.full_resolution ? `every sample (${t.samples_in_range})`
@@ -309,12 +314,6 @@ function lostMotionFitSections(results) {
   return [s];
 }
 
-// An uncertain figure (results.json: value, expanded = U at k = 2, budget) as "value ± U".
-function plusMinus(f, digits = 4) {
-  if (!f || f.value == null) return '–';
-  return f.expanded == null ? num(f.value, digits) : `${num(f.value, digits)} ± ${num(f.expanded, 2)}`;
-}
-
 // The locked-output torsional test: its figures with their uncertainty and budget, and the loop
 // as the catalogues draw it (torque on x, torsion angle on y).
 function torsionalSections(results) {
@@ -346,7 +345,7 @@ function torsionalSections(results) {
   const s = section('torsional', 'Torsional stiffness (locked output)',
     table([
       { label: 'Figure', value: (r) => r[0] },
-      { label: 'Value ± U (k = 2)', value: (r) => plusMinus(r[1]), class: 'n' },
+      { label: 'Value ± U (k = 2)', value: (r) => figureText(r[1]), class: 'n' },
     ], figures, { id: 'torsional-table' }),
     box,
     table([
@@ -452,7 +451,7 @@ function twinSections(run, results) {
     teBox, resBox);
   s.draws = [async () => {
     const columns = Math.min(4000, plotWidth(teBox.querySelector('.plot-area')));
-    const tw = await get(`/api/runs/${encodeURIComponent(run.id)}/twin?columns=${columns}`);
+    const tw = await readRun(`/api/runs/${encodeURIComponent(run.id)}/twin?columns=${columns}`);
     const before = tw.before && !tw.before.error ? tw.before : null;
     const after = tw.after && !tw.after.error ? tw.after : null;
     if (!before && !after) {
@@ -505,7 +504,7 @@ function showError(e) {
 
 async function main_() {
   if (!id) throw new Error('No run given: open this page as /run?id=<run id> (from the history).');
-  const detail = await get(`/api/runs/${encodeURIComponent(id)}`);
+  const detail = await readRun(`/api/runs/${encodeURIComponent(id)}`);
   const run = detail.run;
   const results = detail.results || {};
   document.title = `${run.unit_serial || ''} ${run.procedure} ${run.id} – wavebench`;
@@ -538,7 +537,7 @@ async function main_() {
   main.append(...sections);
   if (run.status === 'running') {
     // Recording, or recorded with its results still being made: they arrive when done.
-    awaitResults(detail, message, () => get(`/api/runs/${encodeURIComponent(id)}`),
+    awaitResults(detail, message, () => readRun(`/api/runs/${encodeURIComponent(id)}`),
       () => window.location.reload());
   }
   // Plots are drawn once their boxes are laid out (they take the box's width).

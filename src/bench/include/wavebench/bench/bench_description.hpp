@@ -2,6 +2,7 @@
 // What a procedure needs to know about the bench it runs on.
 
 #include <string>
+#include <vector>
 
 #include "wavebench/model/gear_params.hpp"
 #include "wavebench/model/gear_sense.hpp"
@@ -20,6 +21,15 @@ struct SafetyLimits {
   double max_te_excursion_rad = 0;  // |TE| at the output
   double heartbeat_timeout_s = 0;   // consumer time per node
   double modbus_link_timeout_s = 0;
+};
+
+// A measuring device of the bench and its calibration as the bench config states it (the
+// optional `calibration: {id, due}` of drive, encoder and torque_sensor): printed on a
+// certificate. Empty id/due: the config does not say.
+struct SensorCalibration {
+  std::string sensor;  // "output encoder"
+  std::string id;      // the calibration certificate's number
+  std::string due;     // next calibration, YYYY-MM-DD
 };
 
 struct BenchDescription {
@@ -44,6 +54,7 @@ struct BenchDescription {
   model::GearParams twin_gear;
   std::string twin_case_path;  // where twin_gear came from (copied into run folders)
   SafetyLimits limits;
+  std::vector<SensorCalibration> sensors;  // input encoder (drive), output encoder, torque sensor
 };
 
 }  // namespace wavebench::bench

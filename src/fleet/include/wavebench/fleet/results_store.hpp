@@ -15,8 +15,9 @@ namespace wavebench::fleet {
 
 struct FleetRunQuery {
   std::optional<std::string> gear_model, bench, unit_serial, procedure, spec, verdict, status;
-  std::optional<std::string> from, to;  // started_at bounds, ISO 8601 (inclusive)
-  int limit = 50;                       // newest first
+  std::optional<std::string> unit_serial_prefix;  // units whose serial starts with it
+  std::optional<std::string> from, to;            // started_at bounds, ISO 8601 (inclusive)
+  int limit = 50;                                 // newest first
 };
 
 struct FleetRunRow {

@@ -48,7 +48,8 @@ enum class RunVerdict { kPass, kFail, kNone, kUndecided };
 
 struct RunQuery {
   std::optional<std::string> procedure;
-  std::optional<std::string> unit_serial;
+  std::optional<std::string> unit_serial;         // exactly this unit
+  std::optional<std::string> unit_serial_prefix;  // units whose serial starts with it
   std::optional<RunStatus> status;
   std::optional<std::string> spec;
   std::optional<RunVerdict> verdict;
