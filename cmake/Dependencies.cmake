@@ -14,6 +14,7 @@ pkg_check_modules(FFTW3 REQUIRED IMPORTED_TARGET fftw3)
 pkg_check_modules(CAIRO REQUIRED IMPORTED_TARGET cairo)
 pkg_check_modules(MODBUS REQUIRED IMPORTED_TARGET libmodbus)
 pkg_check_modules(LIBPQ REQUIRED IMPORTED_TARGET libpq)  # the shared results store (PostgreSQL)
+pkg_check_modules(SODIUM REQUIRED IMPORTED_TARGET libsodium)  # operators' password hashes (Argon2id)
 # Run exports (src/exports): MATLAB .mat files and HDF5 files.
 pkg_check_modules(MATIO REQUIRED IMPORTED_TARGET matio)
 find_package(HDF5 REQUIRED COMPONENTS C)

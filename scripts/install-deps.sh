@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config git clang-format curl
   libeigen3-dev libfftw3-dev libspdlog-dev libfmt-dev libboost-dev libboost-system-dev
-  libmodbus-dev libmatio-dev libhdf5-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev libssl-dev
+  libmodbus-dev libmatio-dev libhdf5-dev libyaml-cpp-dev libcli11-dev nlohmann-json3-dev libsqlite3-dev libcairo2-dev libssl-dev libsodium-dev
   libpq-dev postgresql-15
   libgtest-dev libgmock-dev googletest libbenchmark-dev
   clang libclang-rt-14-dev

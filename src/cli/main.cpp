@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   wavebench::cli::register_report_commands(app, status);
   wavebench::cli::register_bench_commands(app, status);
   wavebench::cli::register_fleet_commands(app, status);
+  wavebench::cli::register_account_commands(app, status);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

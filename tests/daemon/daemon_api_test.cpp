@@ -90,11 +90,11 @@ TEST_F(DaemonApiTest, AbortEndsTheRunAbortedWithTheOperatorsReasonAndKeepsItsSam
 }
 
 TEST_F(DaemonApiTest, AFaultedBenchRefusesRunsUntilReset) {
-  ASSERT_EQ(client().post("/api/stop").status, 200);
+  bench_->request_stop("over-torque");  // a real trip (a limit), not the operator's stop
   EXPECT_EQ(client().get("/api/status").body["state"], "fault");
   const auto refused = client().post("/api/runs", {{"procedure", "static"}});
   EXPECT_EQ(refused.status, 409);
-  EXPECT_NE(refused.body["detail"].get<std::string>().find("operator stop"), std::string::npos);
+  EXPECT_NE(refused.body["detail"].get<std::string>().find("over-torque"), std::string::npos);
 
   const auto reset = client().post("/api/reset");
   ASSERT_EQ(reset.status, 200) << reset.body.dump();

@@ -39,6 +39,7 @@ class DaemonFixture : public ::testing::Test {
     setup.port = 0;
     setup.token = kToken;
     setup.config_text = "name: fake\n";
+    setup.logins = logins_;
     daemon_ = std::make_unique<Daemon>(std::move(setup));
     daemon_->start();
   }
@@ -77,6 +78,7 @@ class DaemonFixture : public ::testing::Test {
   std::filesystem::path dir_;
   std::unique_ptr<Daemon> daemon_;
   FakeBench* bench_ = nullptr;
+  LoginSetup logins_;  // accounts and session timeouts, set before start_daemon()
 };
 
 }  // namespace wavebench::daemon::testing

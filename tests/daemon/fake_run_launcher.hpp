@@ -50,7 +50,8 @@ class FakeRunLauncher : public RunLauncher {
       writer.close();
       outcome.results = {{"procedure", request.procedure},
                          {"samples", writer.records_appended()},
-                         {"options", request.options}};
+                         {"options", request.options},
+                         {"operator", request.operator_name}};
       store.write_results(outcome.run_id, outcome.results);
       store.finish_run(outcome.run_id, storage::RunStatus::kComplete, "", true);
       outcome.status = storage::RunStatus::kComplete;

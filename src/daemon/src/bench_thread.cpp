@@ -172,6 +172,7 @@ void BenchThread::idle_until_job(std::unique_lock<std::mutex>& lock) {
     try {
       manual_.serve(*bench_);
       bench_->idle_for(std::chrono::duration<double>(slice).count());
+      settle_operator_stop();
       refresh_stats_on_bench_thread();
     } catch (const std::exception& e) {
       spdlog::debug("idle: {}", e.what());
@@ -417,9 +418,44 @@ bool BenchThread::stop(const std::string& reason) {
   {
     std::lock_guard lock(mutex_);
     if (!bench_) return false;
+    // Before the trip: the bench thread must know the fault it will see is this one.
+    operator_stop_reason_ = reason;
   }
+  // The manual panel lets go too, before the trip: once the fault is settled the bench is
+  // inactive, and nothing the panel wanted before the stop may power it again.
+  manual_.servo(false);  // the jog, the go-to and the brake go with the servo
+  manual_.stop(reason);
   trip(reason);
   return true;
+}
+
+void BenchThread::settle_operator_stop() {
+  std::string reason;
+  {
+    std::lock_guard lock(mutex_);
+    if (operator_stop_reason_.empty() || !bench_) return;
+    reason = operator_stop_reason_;
+  }
+  // The trip is posted to the bench's event loop: until it has run, there is nothing to settle.
+  if (bench_->state() != bench::BenchLifecycle::kFault) return;
+  const auto fault = bench_->fault_reason();
+  {
+    std::lock_guard lock(mutex_);
+    operator_stop_reason_.clear();
+  }
+  // The bench keeps the first trip's reason (a bench may prefix it, "operator stop: ..."); any
+  // text after ours is a problem found while stopping (e.g. a drive that ignored the quick stop).
+  if (!fault.ends_with(reason)) {
+    spdlog::warn("operator stop: the bench is in fault for another reason ({}); reset needed",
+                 fault);
+    return;
+  }
+  try {
+    bench_->clear_fault();  // checks that no cause persists (heartbeats, brake link)
+    spdlog::info("operator stop: safe state reached, bench inactive and ready");
+  } catch (const std::exception& e) {
+    spdlog::warn("operator stop: the bench stays in fault: {}", e.what());
+  }
 }
 
 void BenchThread::trip(const std::string& reason) {
@@ -466,6 +502,12 @@ BenchStatus BenchThread::status() const {
     if (s.lifecycle == bench::BenchLifecycle::kFault) s.fault_reason = bench_->fault_reason();
   }
   s.state = daemon_state_of(s.lifecycle, run_.has_value() || run_queued_);
+  // An operator stop on its way back to inactive is not shown as a fault.
+  if (s.state == DaemonState::kFault && !operator_stop_reason_.empty() &&
+      s.fault_reason.ends_with(operator_stop_reason_)) {
+    s.state = DaemonState::kStopping;
+    s.fault_reason.clear();
+  }
   return s;
 }
 

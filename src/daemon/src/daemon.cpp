@@ -65,6 +65,7 @@ Daemon::Daemon(DaemonSetup setup)
            setup_.specs_dir, std::make_shared<const ConsoleFiles>(setup_.console_root),
            SoftwareIdentity{setup_.software_version, setup_.software_commit}) {
   bench_thread_.set_check(setup_.bench_check);
+  api_.set_logins(setup_.logins);
   api_.set_fleet_queries(make_fleet_queries(setup_.results, store_.root() / "index.sqlite"));
   api_.set_results_status([this] { return results_status_json(); });
   storage::RunQuery incomplete;

@@ -1,6 +1,8 @@
 #include "wavebench/daemon/daemon_api.hpp"
 
 #include <charconv>
+#include <chrono>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <optional>
@@ -10,6 +12,7 @@
 #include "wavebench/daemon/browser_request.hpp"
 #include "wavebench/daemon/console_files.hpp"
 #include "wavebench/daemon/live_stream.hpp"
+#include "wavebench/daemon/login_throttle.hpp"
 #include "wavebench/daemon/low_priority_reads.hpp"
 #include "wavebench/daemon/manual_api.hpp"
 #include "wavebench/daemon/printable_text.hpp"
@@ -58,6 +61,15 @@ bool looks_like_run_id(const std::string& id) {
     if (id[i] < '0' || id[i] > '9') return false;
   }
   return true;
+}
+
+std::string utc_now_text() {
+  const auto now = std::chrono::system_clock::to_time_t(std::chrono::system_clock::now());
+  std::tm tm{};
+  gmtime_r(&now, &tm);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%dT%H:%M:%SZ", &tm);
+  return text;
 }
 
 ApiResponse busy_reading() {
@@ -154,7 +166,17 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()),
       software_(std::move(software)),
       sessions_(std::make_shared<SessionTable>()),
-      live_clients_(std::make_shared<LiveStreamClients>(kMaxLiveStreams)) {}
+      accounts_(std::make_shared<const Accounts>()),
+      throttle_(std::make_shared<LoginThrottle>()),
+      live_clients_(std::make_shared<LiveStreamClients>(kMaxLiveStreams)),
+      instance_id_(random_hex_token().substr(0, 16)),
+      started_at_(utc_now_text()) {}
+
+void DaemonApi::set_logins(LoginSetup logins) {
+  sessions_ = std::make_shared<SessionTable>(SessionTable::kDefaultCapacity, logins.idle_timeout,
+                                             nullptr, logins.max_age);
+  accounts_ = std::make_shared<const Accounts>(std::move(logins.accounts));
+}
 
 ApiResponse DaemonApi::costly(const std::function<ApiResponse()>& read) const {
   auto answer = reads_->run(read);
@@ -231,9 +253,18 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     if (seg.size() == 2 && seg[1] == "session") return session(request);
     if (seg.size() == 2 && (seg[1] == "abort" || seg[1] == "stop" || seg[1] == "reset")) {
       if (!post) return method_not_allowed("POST");
-      if (auto refused = refuse_change(request)) return std::move(*refused);
+      if (seg[1] == "stop") {
+        if (auto refused = refuse_stop(request)) return std::move(*refused);
+        return stop();
+      }
+      SessionIdentity caller;
+      if (auto refused = refuse_change(request, &caller)) return std::move(*refused);
       if (seg[1] == "abort") return abort_run();
-      if (seg[1] == "stop") return stop();
+      if (caller.role != Role::kEngineer) {
+        return api_error(403, "forbidden",
+                         "role operator: a reset clears a fault, which is an engineer's call; "
+                         "ask an engineer (an account with role engineer)");
+      }
       return reset();
     }
     if (seg.size() == 3 && seg[1] == "manual") {
@@ -257,8 +288,9 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     if (seg.size() == 2 && seg[1] == "runs") {
       if (get) return list_runs(target);
       if (!post) return method_not_allowed("GET or POST");
-      if (auto refused = refuse_change(request)) return std::move(*refused);
-      return start_run(request);
+      SessionIdentity caller;
+      if (auto refused = refuse_change(request, &caller)) return std::move(*refused);
+      return start_run(request, caller);
     }
     if (seg.size() == 3 && seg[1] == "runs") {
       if (!get) return method_not_allowed("GET");
@@ -297,15 +329,20 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
   return api_error(404, "not found", "no resource at " + target.path);
 }
 
-std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request) const {
+std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request,
+                                                    SessionIdentity* caller) const {
   if (request.has_origin && !same_origin(request.origin, request.host)) {
     return api_error(403, "forbidden",
                      "Origin: got '" + request.origin + "', expected http://" + request.host +
                          " (a page of another site must not move the bench)");
   }
-  if (bearer_matches(request.authorization, token_)) return std::nullopt;
+  if (bearer_matches(request.authorization, token_)) {
+    if (caller) *caller = SessionIdentity{};  // the token: automation, acts as an engineer
+    return std::nullopt;
+  }
   const auto id = cookie_value(request.cookie, kSessionCookie);
-  if (id.empty() || !sessions_->use(id)) {
+  const auto who = id.empty() ? std::nullopt : sessions_->use(id);
+  if (!who) {
     return api_error(401, "unauthorized",
                      "this request moves hardware: send 'Authorization: Bearer <token>' with the "
                      "daemon's token (see its --token-file), or log in at /login");
@@ -316,16 +353,46 @@ std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request) c
                          ": missing; the console sends it with every change (a form of another "
                          "site cannot)");
   }
+  if (caller) *caller = *who;
   return std::nullopt;
+}
+
+// The stop needs no session (issue #21): an operator whose session expired, or who never
+// logged in, must still be able to stop a moving bench from any console page. What keeps this
+// safe against a page of another site the operator has open:
+//  - the Host check (host_check.hpp) ran first: a DNS-rebound name never gets here;
+//  - an Origin, when sent, must be this daemon's own: a cross-origin fetch or form is refused;
+//  - the X-Wavebench-Request header is required: an HTML form cannot send a custom header, and
+//    a cross-origin fetch that sets one needs a CORS preflight, which this daemon never grants
+//    (OPTIONS is 405, no Access-Control-* header is ever sent), so the request is not sent;
+//  - and stopping only makes the bench safer: it ends motion, it never starts any. The worst a
+//    local program that can send the header does is stop a run, which it could do by pulling
+//    the plug of a loopback-only daemon's machine anyway; it still cannot start one.
+// The CLI's way, the token without the header, works as for any change.
+std::optional<ApiResponse> DaemonApi::refuse_stop(const ApiRequest& request) const {
+  if (request.has_origin && !same_origin(request.origin, request.host)) {
+    return api_error(403, "forbidden",
+                     "Origin: got '" + request.origin + "', expected http://" + request.host +
+                         " (a page of another site must not reach the bench)");
+  }
+  if (bearer_matches(request.authorization, token_) || !request.console_request.empty()) {
+    return std::nullopt;
+  }
+  return api_error(
+      403, "forbidden",
+      std::string(kConsoleHeader) + ": missing; send it (the console does) or the daemon's token");
 }
 
 ApiResponse DaemonApi::session(const ApiRequest& request) const {
   const auto id = cookie_value(request.cookie, kSessionCookie);
   if (request.method == "GET") {
-    const bool authenticated = !id.empty() && sessions_->use(id);
-    ApiResponse answer{200, {{"authenticated", authenticated}}};
-    // Renewed on every check: an open console keeps its session (and its stop button).
-    if (authenticated)
+    const auto who = id.empty() ? std::nullopt : sessions_->use(id);
+    ApiResponse answer{200, {{"authenticated", who.has_value()}}};
+    answer.body["account"] = who && !who->account.empty() ? nlohmann::json(who->account) : nullptr;
+    answer.body["role"] = who ? nlohmann::json(role_name(who->role)) : nullptr;
+    answer.body["accounts"] = !accounts_->empty();  // whether the login page asks for a name
+    // Renewed on every check: an open console keeps its session.
+    if (who)
       answer.headers.emplace_back("Set-Cookie", session_cookie(id, sessions_->lifetime().count()));
     return answer;
   }
@@ -347,6 +414,10 @@ ApiResponse DaemonApi::session(const ApiRequest& request) const {
     answer.headers.emplace_back("Set-Cookie", session_cookie("", 0));
     return answer;
   }
+  return login(request);
+}
+
+ApiResponse DaemonApi::login(const ApiRequest& request) const {
   if (request.body.size() > kMaxLoginBody) {
     return api_error(413, "payload too large",
                      "body: " + std::to_string(request.body.size()) + " bytes, expected at most " +
@@ -354,17 +425,67 @@ ApiResponse DaemonApi::session(const ApiRequest& request) const {
   }
   const auto parsed = parse_request_json(request.body);
   if (!parsed.error.empty()) return api_error(400, "bad request", parsed.error);
-  const auto token = parsed.value.is_object() ? parsed.value.find("token") : parsed.value.end();
-  if (!parsed.value.is_object() || token == parsed.value.end() || !token->is_string()) {
+  const auto& body = parsed.value;
+  const auto text = [&](const char* key) -> std::optional<std::string> {
+    if (!body.is_object()) return std::nullopt;
+    const auto it = body.find(key);
+    if (it == body.end() || !it->is_string()) return std::nullopt;
+    return it->get<std::string>();
+  };
+  const auto name = text("name");
+  const auto password = text("password");
+  const auto token = text("token");
+  if (!name && !token) {
     return api_error(400, "bad request",
-                     "token: missing; expected {\"token\": \"<the daemon's token>\"}");
+                     "name: missing; expected {\"name\": ..., \"password\": ...} or "
+                     "{\"token\": \"<the daemon's token>\"}");
   }
-  if (!bearer_matches("Bearer " + token->get<std::string>(), token_)) {
-    return api_error(401, "unauthorized", "token: not the daemon's token (see its --token-file)");
+  if (name && (!valid_account_name(*name) || !password)) {
+    return api_error(400, "bad request",
+                     !password
+                         ? std::string("password: missing; expected a string")
+                         : "name: got '" + *name + "', expected 1 to " +
+                               std::to_string(kMaxAccountNameLength) + " of A-Z a-z 0-9 . _ -");
   }
-  ApiResponse answer{200, {{"authenticated", true}}};
-  answer.headers.emplace_back("Set-Cookie",
-                              session_cookie(sessions_->create(), sessions_->lifetime().count()));
+  // Failures count per account name and per client: a guesser is slowed whichever it varies.
+  std::vector<std::string> keys = {"client:" + request.client};
+  if (name) keys.push_back("name:" + *name);
+  std::chrono::seconds wait{0};
+  for (const auto& key : keys) wait = std::max(wait, throttle_->wait(key));
+  if (wait.count() > 0) {
+    auto answer = api_error(429, "too many requests",
+                            "too many failed logins: retry in " + std::to_string(wait.count()) +
+                                " s (each further failure doubles the wait)");
+    answer.headers.emplace_back("Retry-After", std::to_string(wait.count()));
+    return answer;
+  }
+  SessionIdentity who;
+  bool ok = false;
+  if (name) {
+    const auto* account = accounts_->find(*name);
+    if (account) {
+      ok = verify_password(account->password_hash, *password);
+      who = {account->name, account->role};
+    } else {
+      verify_nothing(*password);  // as slow as a wrong password: names are not probed by timing
+    }
+  } else {
+    ok = bearer_matches("Bearer " + *token, token_);
+  }
+  if (!ok) {
+    for (const auto& key : keys) throttle_->failed(key);
+    return api_error(401, "unauthorized",
+                     name ? "name or password: not an account of this daemon (its --accounts file)"
+                          : "token: not the daemon's token (see its --token-file)");
+  }
+  for (const auto& key : keys) throttle_->succeeded(key);
+  ApiResponse answer{
+      200,
+      {{"authenticated", true},
+       {"account", who.account.empty() ? nlohmann::json(nullptr) : nlohmann::json(who.account)},
+       {"role", role_name(who.role)}}};
+  answer.headers.emplace_back(
+      "Set-Cookie", session_cookie(sessions_->create(who), sessions_->lifetime().count()));
   return answer;
 }
 
@@ -396,6 +517,7 @@ nlohmann::json DaemonApi::status_json() const {
   const auto s = bench_.status();
   nlohmann::json j;
   j["state"] = daemon_state_name(s.state);
+  j["instance"] = {{"id", instance_id_}, {"started_at", started_at_}};
   j["software"] = {{"version", software_.version}, {"commit", software_.commit}};
   j["results_store"] = results_status_ ? results_status_() : nlohmann::json(nullptr);
   j["lifecycle"] = bench::lifecycle_name(s.lifecycle);
@@ -480,7 +602,7 @@ nlohmann::json DaemonApi::status_json() const {
   return j;
 }
 
-ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
+ApiResponse DaemonApi::start_run(const ApiRequest& request, const SessionIdentity& caller) const {
   const auto parsed = parse_request_json(request.body);
   if (!parsed.error.empty()) return api_error(400, "bad request", parsed.error);
   const auto& body = parsed.value;
@@ -533,6 +655,13 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request) const {
     (std::string(key) == "operator" ? run.operator_name : run.unit_serial) =
         value->get<std::string>();
   }
+  // The run names who started it: the logged-in account, whatever the form said.
+  if (!caller.account.empty()) run.operator_name = caller.account;
+  if (caller.role != Role::kEngineer && run.options.contains("limits")) {
+    return api_error(403, "forbidden",
+                     "options.limits: role operator starts runs with the specs folder's limits "
+                     "only; changing a spec's limits needs an engineer's account");
+  }
   try {
     runs::check_run_identity(run);
   } catch (const std::invalid_argument& e) {
@@ -577,7 +706,7 @@ ApiResponse DaemonApi::abort_run() const {
 }
 
 ApiResponse DaemonApi::stop() const {
-  if (!bench_.stop("operator stop")) return api_error(409, "conflict", "no bench is connected");
+  if (!bench_.stop()) return api_error(409, "conflict", "no bench is connected");
   return {200, {{"stopped", true}}};
 }
 

@@ -12,6 +12,8 @@ const char* daemon_state_name(DaemonState state) {
       return "running";
     case DaemonState::kFault:
       return "fault";
+    case DaemonState::kStopping:
+      return "stopping";
   }
   return "?";
 }

@@ -69,7 +69,10 @@ class Session : public std::enable_shared_from_this<Session> {
     }
     if (ec) return;  // timeout or reset: nothing to answer
     const auto& request = parser_->get();
-    const ApiRequest api = api_request_from_http(request);
+    ApiRequest api = api_request_from_http(request);
+    beast::error_code peer_error;
+    const auto peer = stream_.socket().remote_endpoint(peer_error);
+    if (!peer_error) api.client = peer.address().to_string();  // login rate limits per client
     ApiResponse response;
     try {
       response = (*handler_)(api);

@@ -8,12 +8,14 @@
 #include <CLI/CLI.hpp>
 #include <boost/asio/io_context.hpp>
 #include <boost/asio/signal_set.hpp>
+#include <chrono>
 #include <csignal>
 #include <exception>
 #include <iostream>
 
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/config/config_error.hpp"
+#include "wavebench/daemon/accounts.hpp"
 #include "wavebench/daemon/api_token.hpp"
 #include "wavebench/daemon/async_logging.hpp"
 #include "wavebench/daemon/console_files.hpp"
@@ -42,6 +44,7 @@ int run(const daemon::DaemonOptions& options) {
   } catch (const std::exception& e) {
     return fail(2, std::string("--config ") + options.config + ": " + e.what());
   }
+  daemon::LoginSetup setup_logins;
   fleet::ResultsConfig results;
   if (!options.results_config.empty()) {
     try {
@@ -54,6 +57,16 @@ int run(const daemon::DaemonOptions& options) {
       return fail(2, std::string("--results ") + options.results_config.string() + ": " + e.what());
     }
   }
+  // Operators by name: a bad accounts file is a config error, like a bad bench config.
+  if (!options.accounts_file.empty()) {
+    try {
+      setup_logins.accounts = daemon::load_accounts(options.accounts_file);
+    } catch (const daemon::AccountsFileRefused& e) {
+      return fail(2, std::string("--accounts: ") + e.what());
+    }
+  }
+  setup_logins.idle_timeout = std::chrono::seconds(options.session_idle_timeout_s);
+  setup_logins.max_age = std::chrono::seconds(options.session_max_age_s);
   const auto token_file =
       options.token_file.empty() ? daemon::default_token_file() : options.token_file;
   daemon::DaemonSetup setup;
@@ -78,6 +91,10 @@ int run(const daemon::DaemonOptions& options) {
         options.listen.host);
   }
   setup.allowed_hosts = options.allowed_hosts;
+  if (!setup_logins.accounts.empty())
+    spdlog::info("{} operator accounts from {}", setup_logins.accounts.size(),
+                 options.accounts_file.string());
+  setup.logins = std::move(setup_logins);
   spdlog::info("wavebenchd {} ({}) starting: bench config {}, runs in {}, token in {}",
                runs::software_version(), runs::software_commit(), config.source,
                options.runs_dir.string(), token_file.string());
@@ -173,6 +190,18 @@ int main(int argc, char** argv) {
   app.add_option("--results", results_config,
                  "where runs go besides the runs folder: a YAML file with `results: {store: "
                  "postgresql, url, password_file, bench, station}` (a lab's shared store)");
+  std::string accounts_file;
+  app.add_option("--accounts", accounts_file,
+                 "operators by name: a YAML file of {name, password_hash, role} (`wavebench "
+                 "account add`); without it only the token logs in");
+  app.add_option("--session-idle-timeout", options.session_idle_timeout_s,
+                 "seconds a console session lives unused")
+      ->check(CLI::Range(1LL, 7LL * 24 * 3600))
+      ->capture_default_str();
+  app.add_option("--session-max-age", options.session_max_age_s,
+                 "seconds a console session lives at most, used or not")
+      ->check(CLI::Range(1LL, 30LL * 24 * 3600))
+      ->capture_default_str();
   app.add_flag("--verbose", options.verbose, "debug logging");
   app.add_flag("--allow-remote", options.allow_remote,
                "allow --listen on an address other machines can reach (logged as a warning)");
@@ -206,6 +235,7 @@ int main(int argc, char** argv) {
   options.web_root = web_root;
   options.specs_dir = specs_dir;
   options.results_config = results_config;
+  options.accounts_file = accounts_file;
   int rc = 1;
   try {
     rc = run(options);

@@ -1,7 +1,7 @@
 // The operator console: start form, progress and verdict, live plots, bench panel, stop. The
 // daemon's status arrives with the live stream (every fifth frame), so nothing here polls but
 // the session check, which also keeps the session alive while the page is open.
-import { api, get, post, ApiError } from './api.js';
+import { api, get, post } from './api.js';
 import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
@@ -50,7 +50,6 @@ function setSession(authenticated) {
   $('login-link').hidden = authenticated;
   $('logout').hidden = !authenticated;
   document.body.classList.toggle('read-only', !authenticated);
-  $('stop').disabled = !authenticated;
   $('reset').disabled = !authenticated;
   form.setEnabled(authenticated && lastStatus !== null && lastStatus.state === 'ready');
 }
@@ -307,36 +306,10 @@ function showStatus(s) {
   showRun(s);
   $('fault').hidden = !s.fault_reason;
   $('fault-reason').textContent = s.fault_reason || '';
-  $('stop').textContent = s.run ? 'STOP RUN' : 'STOP';
   form.setEnabled(loggedIn && s.state === 'ready');
 }
 
-// The stop puts the bench in its safe state: an active run is aborted (its data kept, marked
-// aborted with the reason), otherwise the bench is tripped. It never waits for anything else.
-async function stop() {
-  if (!loggedIn) {
-    message('Log in to stop the bench (or use the hardware emergency stop).', true);
-    return;
-  }
-  const active = lastStatus && lastStatus.run;
-  try {
-    await post(active ? '/api/abort' : '/api/stop');
-    message(active ? 'Run aborted: bench going to its safe state.' : 'Bench stopped.');
-  } catch (e) {
-    if (e instanceof ApiError && e.status === 409 && active) {
-      try {
-        await post('/api/stop');
-        message('Bench stopped.');
-        return;
-      } catch (e2) {
-        message(`Stop failed: ${e2.message}`, true);
-        return;
-      }
-    }
-    if (e instanceof ApiError && e.status === 401) setSession(false);
-    message(`Stop failed: ${e.message}`, true);
-  }
-}
+// The stop (button and Esc) is the stop bar's, on every page (stop_bar.js).
 
 async function reset() {
   try {
@@ -364,7 +337,6 @@ window.wavebenchXY = xyPlot;
 const plots = new LivePlots({ onStatus: showStatus });
 window.wavebenchLive = plots;
 
-$('stop').addEventListener('click', stop);
 $('reset').addEventListener('click', reset);
 $('logout').addEventListener('click', async () => {
   try {
@@ -373,12 +345,6 @@ $('logout').addEventListener('click', async () => {
     // logged out either way
   }
   setSession(false);
-});
-document.addEventListener('keydown', (e) => {
-  if (e.key === 'Escape') {
-    e.preventDefault();
-    stop();
-  }
 });
 $('window').addEventListener('change', () => plots.connect(Number($('window').value)));
 

@@ -118,9 +118,13 @@ class BenchThread {
                          std::chrono::milliseconds wait = std::chrono::seconds(30));
   // Trips the bench with `reason` when a run is active; returns whether one was.
   bool abort_run(const std::string& reason);
-  // Trips the bench with `reason` (safe state) whether or not a run is active; false when no
-  // bench is there.
-  bool stop(const std::string& reason);
+  // The operator's stop (POST /api/stop): trips the bench with `reason` (safe state: drive
+  // disabled, brake off) whether or not a run is active; an active run ends aborted with it,
+  // its data kept. Unlike a trip by a limit or a device, it is not a fault: once the safe
+  // state holds, the bench thread clears it and the bench is inactive again, ready for the
+  // next start without a reset. False when no bench is there.
+  bool stop(const std::string& reason = kOperatorStopReason);
+  static constexpr const char* kOperatorStopReason = "stopped by operator";
   // Clears a fault or retries a failed connect, on the bench thread; returns the error text
   // (empty when the bench is ready afterwards).
   std::string reset(std::chrono::milliseconds wait = std::chrono::seconds(30));
@@ -155,6 +159,9 @@ class BenchThread {
   void check_job(Job& job);
   void idle_until_job(std::unique_lock<std::mutex>& lock);
   void trip(const std::string& reason);
+  // On the bench thread: an operator stop's trip, once the bench shows it, cleared back to
+  // inactive; a fault with any other reason (a real trip came first) stays.
+  void settle_operator_stop();
   void refresh_stats_on_bench_thread();
   void post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
                      const std::string& error);
@@ -181,6 +188,7 @@ class BenchThread {
   std::optional<ActiveRun> run_;
   bool run_queued_ = false;
   std::optional<FinishedRun> last_run_;
+  std::string operator_stop_reason_;  // an operator stop not yet settled
   std::optional<bench::AcquisitionStats> acquisition_;
   ManualSession manual_{[this] { wake_.notify_all(); }};
   std::thread thread_;

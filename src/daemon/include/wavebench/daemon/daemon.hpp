@@ -47,6 +47,8 @@ struct DaemonSetup {
   // Makes the store's connection (on the outbox's thread); empty: PostgreSQL from `results`,
   // or the bench's own SQLite store. Tests put a stand-in here.
   fleet::StoreFactory results_store;
+  // `--accounts FILE` and the session timeouts (daemon_api.hpp).
+  LoginSetup logins;
 };
 
 class Daemon {

@@ -6,11 +6,14 @@
 //                                            results store (its outbox)
 //   POST /api/runs      {procedure, options, spec, unit_serial, operator}  start  (change)
 //   POST /api/abort                           trip the bench: "operator abort" (change)
-//   POST /api/stop                            safe state: "operator stop"      (change)
-//   POST /api/reset                           clear a fault / reconnect        (change)
+//   POST /api/stop                            safe state, the run aborted "stopped by operator",
+//                                             then inactive again (no reset); needs no session
+//                                             (see refuse_stop below)
+//   POST /api/reset                           clear a fault / reconnect        (engineer)
 //   POST /api/manual/{jog|stop|goto|brake|servo|alive}   the manual panel (manual_api.hpp) (change)
-//   POST /api/session   {token}               log in: Set-Cookie wb_session (HttpOnly, Strict)
-//   GET  /api/session                         {"authenticated": bool}; renews the session
+//   POST /api/session   {name, password} | {token}   log in: Set-Cookie wb_session (HttpOnly,
+//                                             Strict); failed logins rate-limited (429)
+//   GET  /api/session                         {"authenticated", "account", "role"}; renews it
 //   DELETE /api/session                       log out
 //   GET  /api/live/stream?window_s=&columns=  server-sent events (live_stream.hpp)
 //   GET  /api/runs?unit=&procedure=&spec=&verdict=&status=&from=&to=&offset=&limit=
@@ -31,15 +34,18 @@
 //                                             one, else this bench's own
 //   GET  /, /history, /app.js, ...            the operator console (console_files.hpp)
 //
-// A change needs `Authorization: Bearer <token>` (the CLI) or, from a browser, a live session
-// cookie together with the X-Wavebench-Request header (browser_request.hpp); an Origin, when
-// sent, must be this daemon's own. No CORS header is ever sent; OPTIONS is 405.
+// A change needs `Authorization: Bearer <token>` (the CLI; acts as an engineer) or, from a
+// browser, a live session cookie together with the X-Wavebench-Request header
+// (browser_request.hpp); an Origin, when sent, must be this daemon's own. No CORS header is
+// ever sent; OPTIONS is 405. A session's role (accounts.hpp) limits what it may change: an
+// operator starts runs without options.limits (the specs folder's limits only) and cannot reset.
 // Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
 // Reads that cost in proportion to the data (sample pages, run details) run on
 // kMaxConcurrentReads low-priority threads (low_priority_reads.hpp); when all are busy the
 // others get 503 at once, so status, abort and stop are always answered.
 
+#include <chrono>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -49,11 +55,13 @@
 #include <utility>
 #include <vector>
 
+#include "wavebench/daemon/accounts.hpp"
 #include "wavebench/daemon/bench_thread.hpp"
 #include "wavebench/daemon/event_stream.hpp"
 #include "wavebench/daemon/host_check.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
+#include "wavebench/daemon/session_table.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
@@ -68,6 +76,7 @@ struct ApiRequest {
   std::string origin;           // the Origin header; empty when absent
   bool has_origin = false;      // an empty Origin is still one, and foreign
   std::string console_request;  // the X-Wavebench-Request header
+  std::string client;           // the peer's address (login rate limits); empty: unknown
 };
 
 struct ApiResponse {
@@ -88,13 +97,20 @@ struct ApiResponse {
 
 class LowPriorityReads;
 class ConsoleFiles;
-class SessionTable;
+class LoginThrottle;
 class LiveStreamClients;
 
 // What /api/status names as the software serving it.
 struct SoftwareIdentity {
   std::string version = "unknown";
   std::string commit = "unknown";
+};
+
+// Operators by name (accounts.hpp) and how long their sessions last.
+struct LoginSetup {
+  Accounts accounts;  // empty: only the token logs in
+  std::chrono::seconds idle_timeout{30 * 60};
+  std::chrono::seconds max_age{12 * 3600};
 };
 
 class DaemonApi {
@@ -115,6 +131,8 @@ class DaemonApi {
   void set_fleet_queries(std::function<ApiResponse(const HttpTarget&)> queries) {
     fleet_ = std::move(queries);
   }
+  // Accounts and session timeouts; set before serving (else: token only, the defaults).
+  void set_logins(LoginSetup logins);
   // `results_store` of GET /api/status (the outbox's state); set before serving.
   void set_results_status(std::function<nlohmann::json()> results_status) {
     results_status_ = std::move(results_status);
@@ -124,7 +142,7 @@ class DaemonApi {
   ApiResponse route(const ApiRequest& request) const;
   ApiResponse costly(const std::function<ApiResponse()>& read) const;
   ApiResponse status() const;
-  ApiResponse start_run(const ApiRequest& request) const;
+  ApiResponse start_run(const ApiRequest& request, const SessionIdentity& caller) const;
   ApiResponse abort_run() const;
   ApiResponse stop() const;
   ApiResponse reset() const;
@@ -136,8 +154,13 @@ class DaemonApi {
   ApiResponse live(const HttpTarget& target) const;
   ApiResponse live_stream(const HttpTarget& target) const;
   ApiResponse session(const ApiRequest& request) const;
-  // Why a state-changing request is refused; nothing when it may go ahead.
-  std::optional<ApiResponse> refuse_change(const ApiRequest& request) const;
+  // Why a state-changing request is refused; nothing when it may go ahead, and then `caller`
+  // (when given) says who asks: the token, or a session's account and role.
+  std::optional<ApiResponse> refuse_change(const ApiRequest& request,
+                                           SessionIdentity* caller = nullptr) const;
+  // The stop's own, looser rule (why it is safe: the comment in daemon_api.cpp).
+  std::optional<ApiResponse> refuse_stop(const ApiRequest& request) const;
+  ApiResponse login(const ApiRequest& request) const;
   nlohmann::json status_json() const;
 
   BenchThread& bench_;
@@ -150,7 +173,13 @@ class DaemonApi {
   std::shared_ptr<const ConsoleFiles> console_;  // GET of any path outside /api
   SoftwareIdentity software_;
   std::shared_ptr<SessionTable> sessions_;
+  std::shared_ptr<const Accounts> accounts_;
+  std::shared_ptr<LoginThrottle> throttle_;
   std::shared_ptr<LiveStreamClients> live_clients_;
+  // Random per daemon start (GET /api/status "instance"): a console that sees it change knows
+  // the daemon restarted, and with it every session ended.
+  std::string instance_id_;
+  std::string started_at_;  // UTC, to the second
   std::function<ApiResponse(const HttpTarget&)> fleet_;
   std::function<nlohmann::json()> results_status_;
 };

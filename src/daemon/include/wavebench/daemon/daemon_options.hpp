@@ -1,6 +1,7 @@
 #pragma once
 // wavebenchd's command line: --config BENCH.yaml|sim [--runs DIR] [--listen HOST:PORT]
-// [--token-file F] [--log-dir D] [--specs-dir D] [--results FILE].
+// [--token-file F] [--log-dir D] [--specs-dir D] [--results FILE] [--accounts FILE]
+// [--session-idle-timeout S] [--session-max-age S].
 
 #include <filesystem>
 #include <string>
@@ -32,6 +33,9 @@ struct DaemonOptions {
   std::vector<std::string> allowed_hosts;  // Host names accepted beside IP literals, localhost
   std::filesystem::path web_root;          // empty: default_console_root()
   std::filesystem::path results_config;    // --results; empty: the runs folder only
+  std::filesystem::path accounts_file;     // --accounts; empty: only the token logs in
+  long long session_idle_timeout_s = 30 * 60;  // --session-idle-timeout
+  long long session_max_age_s = 12 * 3600;     // --session-max-age
 };
 
 }  // namespace wavebench::daemon

@@ -7,10 +7,11 @@
 namespace wavebench::daemon {
 
 enum class DaemonState {
-  kIdle,     // no bench connected (not yet, or connecting failed)
-  kReady,    // bench connected, no run
-  kRunning,  // a run is active
-  kFault,    // bench tripped: safe state held until reset
+  kIdle,      // no bench connected (not yet, or connecting failed)
+  kReady,     // bench connected, no run
+  kRunning,   // a run is active
+  kFault,     // bench tripped: safe state held until reset
+  kStopping,  // an operator stop: safe state held, back to ready on its own (no reset)
 };
 
 const char* daemon_state_name(DaemonState state);
