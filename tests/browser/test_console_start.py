@@ -170,7 +170,11 @@ class ConsoleStartTest(unittest.TestCase):
         self.scan('SN-SCAN-0003', Keys.ENTER + Keys.ENTER)
         self.assertEqual(self.el('#unit-serial').get_attribute('value'), 'SN-SCAN-0003')
         self.assert_stays_idle('scan with CR LF')
-        # A scan into the field itself, after clicking it, replaces what it held too.
+        # A scan into the field itself, after clicking it, replaces what it held too, even a
+        # serial typed by hand and left without Enter (the click selects it all).
+        self.el('#unit-serial').click()
+        ActionChains(self.driver).send_keys('TYPED-BY-HAND').perform()
+        self.el('#start-form h2').click()
         self.el('#unit-serial').click()
         self.scan('SN-SCAN-0004')
         self.assertEqual(self.el('#unit-serial').get_attribute('value'), 'SN-SCAN-0004')

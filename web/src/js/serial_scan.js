@@ -30,8 +30,16 @@ export class SerialScan {
 
     // Focus selects the whole serial, so what is typed or scanned next replaces it.
     field.addEventListener('focus', () => {
-      if (!this.typingInto) field.select();
+      if (this.typingInto) return;
+      field.select();
+      this.selectedOnFocus = true;
     });
+    // The mouseup of the click that focused the field would put a caret in the selection.
+    field.addEventListener('mouseup', (e) => {
+      if (this.selectedOnFocus) e.preventDefault();
+      this.selectedOnFocus = false;
+    });
+    field.addEventListener('blur', () => { this.selectedOnFocus = false; });
     field.addEventListener('keydown', (e) => {
       if (e.key === 'Enter') {
         e.preventDefault();
