@@ -5,7 +5,7 @@ import { api, get, post } from './api.js';
 import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
-import { uncertain } from './dom.js';
+import { uncertain } from './figures.js';
 import { SettledPointsPlot } from './settled_points_plot.js';
 import { showPostRuns, timeLeft } from './run_progress.js';
 

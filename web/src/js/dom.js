@@ -1,5 +1,4 @@
 // Small DOM builders for the pages (no framework: the pages are a few tables and plots).
-import { roundedToUncertainty } from './uncertain_digits.js';
 
 export function el(tag, attrs = {}, ...children) {
   const node = document.createElement(tag);
@@ -53,34 +52,3 @@ export function specName(run, results) {
   return typeof s === 'string' ? s : s.name || s.model || null;
 }
 
-// "value ± U" to the digits U supports (uncertain_digits.js); `digits` significant without U.
-function figureText(value, expanded, digits) {
-  const r = roundedToUncertainty(value, expanded);
-  return r ? `${r.value} ± ${r.expanded}` : `${num(value, digits)} ± ${num(expanded, 2)}`;
-}
-
-// A figure of results.json with its expanded uncertainty: "5.70 ± 0.02" and, on hover or
-// focus, its budget (the figure's `uncertainty` entry beside it: value, expanded, k, budget).
-// Click opens the budget as a small table under the value. A figure without one shows alone.
-export function uncertain(object, key, digits = 4) {
-  const value = object ? object[key] : null;
-  const u = object && object.uncertainty ? object.uncertainty[key] : null;
-  if (!u || typeof u !== 'object' || u.expanded == null) return num(value, digits);
-  const budget = Array.isArray(u.budget) ? u.budget : [];
-  const title = `U = ${num(u.expanded, 2)} (k = ${u.k ?? 2}), u_c = ${num(u.combined_standard, 2)}\n` +
-    budget.map((c) => `${c.source} (${c.type}): u = ${num(c.standard, 2)}`).join('\n');
-  const details = el('table', { class: 'budget', hidden: true },
-    el('tbody', {}, budget.map((c) => el('tr', {},
-      el('td', {}, c.source), el('td', {}, c.type), el('td', { class: 'n' }, num(c.standard, 2))))));
-  const shown = el('span', {
-    class: 'uncertain', title, tabindex: '0', role: 'button', 'aria-expanded': 'false',
-    'data-expanded': String(u.expanded),
-  }, figureText(value, u.expanded, digits));
-  const toggle = () => {
-    details.hidden = !details.hidden;
-    shown.setAttribute('aria-expanded', String(!details.hidden));
-  };
-  shown.addEventListener('click', toggle);
-  shown.addEventListener('keydown', (e) => { if (e.key === 'Enter' || e.key === ' ') { e.preventDefault(); toggle(); } });
-  return el('span', { class: 'uncertain-figure' }, shown, details);
-}
