@@ -366,6 +366,7 @@ bool BenchThread::stop(const std::string& reason) {
     if (!bench_) return false;
     // Before the trip: the bench thread must know the fault it will see is this one.
     operator_stop_reason_ = reason;
+    ++operator_stops_;
   }
   trip(reason);
   return true;
@@ -373,38 +374,33 @@ bool BenchThread::stop(const std::string& reason) {
 
 void BenchThread::settle_operator_stop() {
   std::string reason;
+  std::uint64_t stops = 0;
   {
     std::lock_guard lock(mutex_);
     if (operator_stop_reason_.empty() || !bench_) return;
     reason = operator_stop_reason_;
+    stops = operator_stops_;
   }
   // The trip is posted to the bench's event loop: until it has run, there is nothing to settle.
   if (bench_->state() != bench::BenchLifecycle::kFault) return;
   const auto fault = bench_->fault_reason();
-  {
-    std::lock_guard lock(mutex_);
-    operator_stop_reason_.clear();
-  }
   // The bench keeps the first trip's reason (a bench may prefix it, "operator stop: ..."); any
   // text after ours is a problem found while stopping (e.g. a drive that ignored the quick stop).
   if (!fault.ends_with(reason)) {
     spdlog::warn("operator stop: the bench is in fault for another reason ({}); reset needed",
                  fault);
-    return;
+  } else {
+    try {
+      bench_->clear_fault();  // checks that no cause persists (heartbeats, brake link)
+      spdlog::info("operator stop: safe state reached, bench inactive and ready");
+    } catch (const std::exception& e) {
+      spdlog::warn("operator stop: the bench stays in fault: {}", e.what());
+    }
   }
-  try {
-    bench_->clear_fault();  // checks that no cause persists (heartbeats, brake link)
-    spdlog::info("operator stop: safe state reached, bench inactive and ready");
-  } catch (const std::exception& e) {
-    spdlog::warn("operator stop: the bench stays in fault: {}", e.what());
-  }
-}
-
-void BenchThread::trip(const std::string& reason) {
+  // Only now: until the fault is cleared, status() shows "stopping", not a fault. A stop that
+  // came meanwhile (Esc pressed twice) is settled on the next pass.
   std::lock_guard lock(mutex_);
-  if (!bench_) return;
-  spdlog::warn("safe state requested: {}", reason);
-  bench_->request_stop(reason);  // thread-safe and non-blocking by contract
+  if (operator_stops_ == stops) operator_stop_reason_.clear();
 }
 
 std::string BenchThread::reset(std::chrono::milliseconds wait) {
