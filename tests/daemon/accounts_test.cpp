@@ -5,8 +5,11 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
+#include <thread>
 
 #include "daemon_fixture.hpp"
 #include "wavebench/daemon/browser_request.hpp"
@@ -229,7 +232,7 @@ TEST_F(AccountsApiTest, TheStopFromAnotherSiteOrWithoutTheHeaderIsRefused) {
   EXPECT_EQ(handle(foreign).status, 403);
   auto form = request("POST", "/api/stop");
   form.console_request.clear();
-  EXPECT_EQ(handle(form).status, 403);
+  EXPECT_EQ(handle(form).status, 401);
   auto start = request("POST", "/api/runs", R"({"procedure": "static"})");
   EXPECT_EQ(handle(start).status, 401);  // the header alone starts nothing
   EXPECT_EQ(bench_->state(), bench::BenchLifecycle::kInactive);

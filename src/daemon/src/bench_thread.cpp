@@ -338,8 +338,13 @@ StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milli
               "a run is already active" + (id.empty() ? std::string() : " (" + id + ")")};
     }
     if (bench_->state() == bench::BenchLifecycle::kFault) {
+      const auto fault = bench_->fault_reason();
+      if (!operator_stop_reason_.empty() && fault.ends_with(operator_stop_reason_)) {
+        return {StartOutcome::Kind::kRejected, "",
+                "the bench is stopping (operator stop) and ready again in a moment; retry"};
+      }
       return {StartOutcome::Kind::kRejected, "",
-              "the bench is in fault (" + bench_->fault_reason() + "); clear it with a reset"};
+              "the bench is in fault (" + fault + "); clear it with a reset"};
     }
     run_queued_ = true;
     jobs_.push_back(job);
