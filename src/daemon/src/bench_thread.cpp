@@ -408,6 +408,13 @@ void BenchThread::settle_operator_stop() {
   if (operator_stops_ == stops) operator_stop_reason_.clear();
 }
 
+void BenchThread::trip(const std::string& reason) {
+  std::lock_guard lock(mutex_);
+  if (!bench_) return;
+  spdlog::warn("safe state requested: {}", reason);
+  bench_->request_stop(reason);  // thread-safe and non-blocking by contract
+}
+
 std::string BenchThread::reset(std::chrono::milliseconds wait) {
   auto job = std::make_shared<Job>();
   job->kind = Job::Kind::kReset;
