@@ -10,7 +10,7 @@
 #include <memory>
 #include <string>
 
-#include "commands.hpp"
+#include "account_commands.hpp"
 #include "wavebench/daemon/accounts.hpp"
 
 namespace wavebench::cli {

@@ -20,6 +20,5 @@ void register_daemon_client_commands(CLI::App& app,
 void register_report_commands(CLI::App& app, ExitStatus& status);  // report RUN_DIR
 void register_bench_commands(CLI::App& app, ExitStatus& status);   // bench check
 void register_fleet_commands(CLI::App& app, ExitStatus& status);   // fleet runs|trend|spc
-void register_account_commands(CLI::App& app, ExitStatus& status);  // account hash|add
 
 }  // namespace wavebench::cli

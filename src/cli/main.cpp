@@ -2,6 +2,7 @@
 #include <exception>
 #include <iostream>
 
+#include "account_commands.hpp"
 #include "commands.hpp"
 #include "wavebench/runs/allocator_policy.hpp"
 #include "wavebench/runs/software_version.hpp"

@@ -388,8 +388,13 @@ StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milli
               "a run is already active" + (id.empty() ? std::string() : " (" + id + ")")};
     }
     if (bench_->state() == bench::BenchLifecycle::kFault) {
+      const auto fault = bench_->fault_reason();
+      if (!operator_stop_reason_.empty() && fault.ends_with(operator_stop_reason_)) {
+        return {StartOutcome::Kind::kRejected, "",
+                "the bench is stopping (operator stop) and ready again in a moment; retry"};
+      }
       return {StartOutcome::Kind::kRejected, "",
-              "the bench is in fault (" + bench_->fault_reason() + "); clear it with a reset"};
+              "the bench is in fault (" + fault + "); clear it with a reset"};
     }
     if (manual_.engaged()) {
       return {StartOutcome::Kind::kRejected, "",
@@ -420,6 +425,7 @@ bool BenchThread::stop(const std::string& reason) {
     if (!bench_) return false;
     // Before the trip: the bench thread must know the fault it will see is this one.
     operator_stop_reason_ = reason;
+    ++operator_stops_;
   }
   // The manual panel lets go too, before the trip: once the fault is settled the bench is
   // inactive, and nothing the panel wanted before the stop may power it again.
@@ -431,31 +437,33 @@ bool BenchThread::stop(const std::string& reason) {
 
 void BenchThread::settle_operator_stop() {
   std::string reason;
+  std::uint64_t stops = 0;
   {
     std::lock_guard lock(mutex_);
     if (operator_stop_reason_.empty() || !bench_) return;
     reason = operator_stop_reason_;
+    stops = operator_stops_;
   }
   // The trip is posted to the bench's event loop: until it has run, there is nothing to settle.
   if (bench_->state() != bench::BenchLifecycle::kFault) return;
   const auto fault = bench_->fault_reason();
-  {
-    std::lock_guard lock(mutex_);
-    operator_stop_reason_.clear();
-  }
   // The bench keeps the first trip's reason (a bench may prefix it, "operator stop: ..."); any
   // text after ours is a problem found while stopping (e.g. a drive that ignored the quick stop).
   if (!fault.ends_with(reason)) {
     spdlog::warn("operator stop: the bench is in fault for another reason ({}); reset needed",
                  fault);
-    return;
+  } else {
+    try {
+      bench_->clear_fault();  // checks that no cause persists (heartbeats, brake link)
+      spdlog::info("operator stop: safe state reached, bench inactive and ready");
+    } catch (const std::exception& e) {
+      spdlog::warn("operator stop: the bench stays in fault: {}", e.what());
+    }
   }
-  try {
-    bench_->clear_fault();  // checks that no cause persists (heartbeats, brake link)
-    spdlog::info("operator stop: safe state reached, bench inactive and ready");
-  } catch (const std::exception& e) {
-    spdlog::warn("operator stop: the bench stays in fault: {}", e.what());
-  }
+  // Only now: until the fault is cleared, status() shows "stopping", not a fault. A stop that
+  // came meanwhile (Esc pressed twice) is settled on the next pass.
+  std::lock_guard lock(mutex_);
+  if (operator_stops_ == stops) operator_stop_reason_.clear();
 }
 
 void BenchThread::trip(const std::string& reason) {

@@ -202,7 +202,7 @@ int client_stop(const ClientContext& ctx) {
   return with_client(ctx, true, [&](const DaemonClient& client) {
     const auto reply = client.post("/api/stop");
     if (!reply.ok()) return refused(ctx, "stop", reply);
-    *ctx.out << "bench in its safe state (operator stop); 'wavebench reset' clears it\n";
+    *ctx.out << "bench in its safe state (operator stop); it is ready again by itself\n";
     return 0;
   });
 }

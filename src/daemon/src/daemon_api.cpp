@@ -378,9 +378,9 @@ std::optional<ApiResponse> DaemonApi::refuse_stop(const ApiRequest& request) con
   if (bearer_matches(request.authorization, token_) || !request.console_request.empty()) {
     return std::nullopt;
   }
-  return api_error(
-      403, "forbidden",
-      std::string(kConsoleHeader) + ": missing; send it (the console does) or the daemon's token");
+  return api_error(401, "unauthorized",
+                   "send 'Authorization: Bearer <token>' with the daemon's token, or the " +
+                       std::string(kConsoleHeader) + " header (the console does)");
 }
 
 ApiResponse DaemonApi::session(const ApiRequest& request) const {

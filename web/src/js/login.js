@@ -27,6 +27,8 @@ attempt('login-form', 'login-error', () => ({ token: document.getElementById('to
 get('/api/session').then((s) => {
   if (s && s.accounts === false) {
     document.getElementById('account-form').hidden = true;
+    document.querySelector('#token-login summary').textContent =
+      "Log in with the daemon's token (this daemon has no operator accounts: wavebenchd --accounts)";
     document.getElementById('token').focus();
   } else if (s && s.accounts === true) {
     document.getElementById('token-login').open = false;

@@ -6,6 +6,7 @@
 
 #include <chrono>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <functional>
 #include <memory>
@@ -189,6 +190,7 @@ class BenchThread {
   bool run_queued_ = false;
   std::optional<FinishedRun> last_run_;
   std::string operator_stop_reason_;  // an operator stop not yet settled
+  std::uint64_t operator_stops_ = 0;  // how many were asked for
   std::optional<bench::AcquisitionStats> acquisition_;
   ManualSession manual_{[this] { wake_.notify_all(); }};
   std::thread thread_;
