@@ -33,6 +33,7 @@ class ManualPanel {
     const button = (id, text, label) => el('button', { id, type: 'button', class: 'jog', 'aria-label': label }, text);
     this.servoWords = el('strong', { id: 'manual-servo' }, '…');
     this.brakeWords = el('span', { id: 'manual-brake' }, '');
+    this.outputWords = el('span', { id: 'manual-output' }, '');
     this.reverse = button('jog-reverse', '◀', 'jog reverse (hold)');
     this.forward = button('jog-forward', '▶', 'jog forward (hold)');
     this.speed = el('input', { id: 'jog-speed', type: 'number', min: '1', max: '60', step: '1', value: '30', inputmode: 'decimal' });
@@ -48,7 +49,7 @@ class ManualPanel {
       el('label', {}, 'Brake torque ', this.torque, ' N·m'), el('button', { type: 'submit' }, 'Set'));
     this.root.replaceChildren(
       el('h2', {}, 'Manual'),
-      el('div', { class: 'manual-state', 'aria-live': 'polite' }, 'Servo: ', this.servoWords, ' · ', this.brakeWords),
+      el('div', { class: 'manual-state', 'aria-live': 'polite' }, 'Servo: ', this.servoWords, ' · ', this.brakeWords, ' · ', this.outputWords),
       el('div', { class: 'manual-row jog-row' }, this.reverse,
         el('label', {}, 'Speed ', this.speed, ' rpm'), this.forward, this.servo),
       el('p', { class: 'hint' }, 'Hold ◀ or ▶ (or Space on it) to turn the input; it stops when released. ', this.limits),
@@ -120,6 +121,7 @@ class ManualPanel {
   stopJog() {
     if (this.jogging === 0) return;
     this.jogging = 0;
+    this.releasedAt = Date.now(); // for the browser test's stop latency
     this.root.classList.remove('jogging');
     this.send('stop', {});
   }
@@ -192,6 +194,10 @@ class ManualPanel {
     this.servoWords.textContent = s.servo || '—';
     this.brakeWords.textContent = s.brake || '';
     this.root.dataset.servo = s.servo || '';
+    const out = s.latest && s.latest.theta_out_rad;
+    // The output's angle within its turn, as a go-to takes it.
+    this.outputWords.textContent = typeof out === 'number'
+      ? `output at ${((((out * 180) / Math.PI) % 360 + 360) % 360).toFixed(1)}°` : '';
     if (m.max_speed_rpm) this.speed.max = String(m.max_speed_rpm);
     if (m.max_brake_torque_nm !== undefined) this.torque.max = String(m.max_brake_torque_nm);
     this.limits.textContent = m.max_speed_rpm
