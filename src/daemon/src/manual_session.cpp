@@ -131,7 +131,8 @@ bool ManualSession::stop(const std::string& why) {
     going = going_deg_.has_value();
     wanted_.jog_rpm = 0;
     wanted_.goto_deg.reset();
-    last_stop_ = why;
+    // A release is the normal end of a jog: only an interrupted go-to is worth telling.
+    if (going) last_stop_ = why;
   }
   wake_();
   return going;
@@ -190,7 +191,6 @@ void ManualSession::servo(bool on) {
       wanted_.jog_rpm = 0;
       wanted_.brake_nm = 0;
       wanted_.goto_deg.reset();
-      last_stop_ = "servo switched off";
     }
   }
   wake_();

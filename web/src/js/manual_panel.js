@@ -50,8 +50,9 @@ class ManualPanel {
     this.root.replaceChildren(
       el('h2', {}, 'Manual'),
       el('div', { class: 'manual-state', 'aria-live': 'polite' }, 'Servo: ', this.servoWords, ' · ', this.brakeWords, ' · ', this.outputWords),
+      el('div', { class: 'manual-row' }, this.servo),
       el('div', { class: 'manual-row jog-row' }, this.reverse,
-        el('label', {}, 'Speed ', this.speed, ' rpm'), this.forward, this.servo),
+        el('label', {}, 'Speed ', this.speed, ' rpm'), this.forward),
       el('p', { class: 'hint' }, 'Hold ◀ or ▶ (or Space on it) to turn the input; it stops when released. ', this.limits),
       this.goto, this.brakeForm, this.note, this.error);
     this.controls = [this.reverse, this.forward, this.speed, this.angle, this.torque, this.servo,
@@ -207,7 +208,9 @@ class ManualPanel {
     const blocked = s.run ? 'A run is active: the manual panel waits until it has ended.'
       : s.state === 'fault' ? 'The bench is in fault: reset it first.'
         : s.state === 'idle' ? 'No bench connected.' : '';
-    this.note.textContent = blocked || (m.last_stop ? `Last stop: ${m.last_stop}` : '');
+    // Why manual control last ended, while it matters: until the panel is used again.
+    const idle = !m.servo_on && s.servo === 'servo off';
+    this.note.textContent = blocked || (idle && m.last_stop ? `Last stop: ${m.last_stop}` : '');
     for (const c of this.controls) c.disabled = Boolean(blocked) && c !== this.servo;
     this.servo.disabled = Boolean(blocked) && !m.servo_on;
     if (blocked) this.stopJog();
