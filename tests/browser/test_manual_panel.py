@@ -130,6 +130,35 @@ class ManualPanelTest(ConsolePageTest):
         self.assertEqual(self.status()["lifecycle"], "inactive")
         self.shot_panel("manual-after")
 
+    def test_1b_page_connection_lost_stops_within_the_heartbeat_timeout(self):
+        # Right after the pointer test: after the keyboard test, WebDriver's pointer press does
+        # not reach the button in this headless Chromium (seen, not yet understood).
+        self.reset_bench()
+        bound = self.status()["manual"]["stop_within_s"]
+        # The page: the jog held, then its requests never reach the daemon (a cable pulled):
+        # no stop is sent, the daemon's timeout stops it.
+        forward = self.browser.find_element(By.ID, "jog-forward")
+        # A fresh input state: WebDriver keeps the keyboard test's on the remote end.
+        ActionChains(self.browser).reset_actions()
+        ActionChains(self.browser).move_to_element(forward).click_and_hold().perform()
+        try:
+            self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
+        except AssertionError:
+            print("panel:", self.browser.execute_script(
+                "return [window.wavebenchManual.jogging, document.activeElement.id,"
+                " document.hasFocus()]"), self.status()["manual"], flush=True)
+            raise
+        self.browser.execute_script("window.fetch = () => new Promise(() => {});")
+        cut = time.monotonic()
+        latency = self.wait_standing(cut, bound)
+        print(f"page connection lost -> input standing {latency * 1000:.0f} ms after "
+              f"(heartbeat timeout {bound * 1000:.0f} ms)", flush=True)
+        self.assertLessEqual(latency, bound)
+        ActionChains(self.browser).release().perform()
+        self.browser.refresh()  # fetch back
+        WebDriverWait(self.browser, 20).until(
+            lambda b: b.find_element(By.ID, "manual-servo").text == "servo off")
+
     def test_2_keyboard_hold_jogs_reverse(self):
         self.reset_bench()
         reverse = self.browser.find_element(By.ID, "jog-reverse")
@@ -165,26 +194,6 @@ class ManualPanelTest(ConsolePageTest):
         self.assertLessEqual(latency, bound)
         self.assertIn("no keep-alive", self.status()["manual"]["last_stop"])
 
-        # The page: the jog held, then its requests never reach the daemon (a cable pulled):
-        # no stop is sent, the daemon's timeout stops it.
-        self.reset_bench()
-        forward = self.browser.find_element(By.ID, "jog-forward")
-        ActionChains(self.browser).click_and_hold(forward).perform()
-        try:
-            self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
-        except AssertionError:
-            print("panel:", self.panel_text("manual-panel"), self.status()["manual"], flush=True)
-            raise
-        self.browser.execute_script("window.fetch = () => new Promise(() => {});")
-        cut = time.monotonic()
-        latency = self.wait_standing(cut, bound)
-        print(f"page connection lost -> input standing {latency * 1000:.0f} ms after "
-              f"(heartbeat timeout {bound * 1000:.0f} ms)", flush=True)
-        self.assertLessEqual(latency, bound)
-        ActionChains(self.browser).release().perform()
-        self.browser.refresh()  # fetch back
-        WebDriverWait(self.browser, 20).until(
-            lambda b: b.find_element(By.ID, "manual-servo").text == "servo off")
 
     def test_4_over_limit_requests_are_refused_before_anything_moves(self):
         self.reset_bench()

@@ -180,6 +180,7 @@ TEST_F(ManualSessionTest, TheSafetyLimitBoundsThePanelsOwnLimit) {
 }
 
 TEST_F(ManualSessionTest, AGoToMovesTheInputByRatioTimesTheOutputAngle) {
+  bench_.idle_for(0.001);  // one sample: the output stands at 1e-4 rad
   ASSERT_FALSE(session_.go_to(1.0, 30));
   session_.serve(bench_);
   // N = 100, s = +1: one output degree is 100 input degrees from where the input stands.

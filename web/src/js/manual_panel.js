@@ -81,7 +81,10 @@ class ManualPanel {
           this.stopJog();
         }
       });
-      button.addEventListener('blur', () => this.stopJog());
+      // Only this button's own jog: pressing the other one moves focus away from this one.
+      button.addEventListener('blur', () => {
+        if (this.jogging === direction) this.stopJog();
+      });
       button.addEventListener('contextmenu', (e) => e.preventDefault());
     }
     window.addEventListener('blur', () => this.stopJog());
