@@ -98,7 +98,7 @@ class ManualPanelTest(ConsolePageTest):
         self.set_field("jog-speed", 30)
         forward = self.browser.find_element(By.ID, "jog-forward")
         ActionChains(self.browser).click_and_hold(forward).perform()
-        self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
+        self.until("moving", lambda: self.status()["servo"] == "moving 30 rpm")
         # Held for 1.5 s (five times the keep-alive timeout): it keeps turning at 30 rpm.
         speeds, words = [], set()
         end = time.monotonic() + 1.5
@@ -117,8 +117,11 @@ class ManualPanelTest(ConsolePageTest):
         start = time.monotonic()
         ActionChains(self.browser).release().perform()
         latency = self.wait_standing(start, RELEASE_BOUND_S)
-        print(f"\njog released -> input standing after {latency * 1000:.0f} ms "
-              f"(bound {RELEASE_BOUND_S * 1000:.0f} ms)", flush=True)
+        standing_at = time.time()
+        released_at = self.browser.execute_script("return window.wavebenchManual.releasedAt") / 1000
+        print(f"\njog released -> input standing after {latency * 1000:.0f} ms from the "
+              f"WebDriver release, {(standing_at - released_at) * 1000:.0f} ms from the page's "
+              f"pointerup (bound {RELEASE_BOUND_S * 1000:.0f} ms)", flush=True)
         self.assertLessEqual(latency, RELEASE_BOUND_S)
         # The servo was on for the jog only: off again.
         self.until("servo off after", lambda: self.status()["servo"] == "servo off", 3)
@@ -127,16 +130,48 @@ class ManualPanelTest(ConsolePageTest):
         self.assertEqual(self.status()["lifecycle"], "inactive")
         self.shot_panel("manual-after")
 
+    def test_1b_page_connection_lost_stops_within_the_heartbeat_timeout(self):
+        # Right after the pointer test: after the keyboard test, WebDriver's pointer press does
+        # not reach the button in this headless Chromium (seen, not yet understood).
+        self.reset_bench()
+        bound = self.status()["manual"]["stop_within_s"]
+        # The page: the jog held, then its requests never reach the daemon (a cable pulled):
+        # no stop is sent, the daemon's timeout stops it.
+        forward = self.browser.find_element(By.ID, "jog-forward")
+        # A fresh input state: WebDriver keeps the keyboard test's on the remote end.
+        ActionChains(self.browser).reset_actions()
+        ActionChains(self.browser).move_to_element(forward).click_and_hold().perform()
+        try:
+            self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
+        except AssertionError:
+            print("panel:", self.browser.execute_script(
+                "return [window.wavebenchManual.jogging, document.activeElement.id,"
+                " document.hasFocus()]"), self.status()["manual"], flush=True)
+            raise
+        self.browser.execute_script("window.fetch = () => new Promise(() => {});")
+        cut = time.monotonic()
+        latency = self.wait_standing(cut, bound)
+        print(f"page connection lost -> input standing {latency * 1000:.0f} ms after "
+              f"(heartbeat timeout {bound * 1000:.0f} ms)", flush=True)
+        self.assertLessEqual(latency, bound)
+        ActionChains(self.browser).release().perform()
+        self.browser.refresh()  # fetch back
+        WebDriverWait(self.browser, 20).until(
+            lambda b: b.find_element(By.ID, "manual-servo").text == "servo off")
+
     def test_2_keyboard_hold_jogs_reverse(self):
         self.reset_bench()
         reverse = self.browser.find_element(By.ID, "jog-reverse")
         reverse.click()  # focus (a click is a short hold: it stops at once)
         self.until("standing", lambda: abs(rpm(self.status()) or 0) < STANDING_RPM, 3)
         ActionChains(self.browser).key_down(Keys.SPACE).perform()
-        self.until("moving reverse", lambda: (rpm(self.status()) or 0) < -25, 3)
-        self.assertEqual(self.status()["servo"], "moving -30 rpm")
-        start = time.monotonic()
-        ActionChains(self.browser).key_up(Keys.SPACE).perform()
+        try:
+            self.until("moving reverse", lambda: (rpm(self.status()) or 0) < -25, 3)
+            # The measured speed, once the drive has settled after its ramp.
+            self.until("words", lambda: self.status()["servo"] == "moving -30 rpm", 3)
+        finally:
+            start = time.monotonic()
+            ActionChains(self.browser).key_up(Keys.SPACE).perform()
         latency = self.wait_standing(start, RELEASE_BOUND_S)
         print(f"\nkeyboard jog released -> standing after {latency * 1000:.0f} ms", flush=True)
         self.assertLessEqual(latency, RELEASE_BOUND_S)
@@ -159,22 +194,6 @@ class ManualPanelTest(ConsolePageTest):
         self.assertLessEqual(latency, bound)
         self.assertIn("no keep-alive", self.status()["manual"]["last_stop"])
 
-        # The page: the jog held, then its requests never reach the daemon (a cable pulled):
-        # no stop is sent, the daemon's timeout stops it.
-        self.reset_bench()
-        forward = self.browser.find_element(By.ID, "jog-forward")
-        ActionChains(self.browser).click_and_hold(forward).perform()
-        self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
-        self.browser.execute_script("window.fetch = () => new Promise(() => {});")
-        cut = time.monotonic()
-        latency = self.wait_standing(cut, bound)
-        print(f"page connection lost -> input standing {latency * 1000:.0f} ms after "
-              f"(heartbeat timeout {bound * 1000:.0f} ms)", flush=True)
-        self.assertLessEqual(latency, bound)
-        ActionChains(self.browser).release().perform()
-        self.browser.refresh()  # fetch back
-        WebDriverWait(self.browser, 20).until(
-            lambda b: b.find_element(By.ID, "manual-servo").text == "servo off")
 
     def test_4_over_limit_requests_are_refused_before_anything_moves(self):
         self.reset_bench()
@@ -208,14 +227,16 @@ class ManualPanelTest(ConsolePageTest):
         self.assertEqual(code, 409, answer)
         self.assertIn("manual panel", answer["detail"])
 
-        here = math.degrees(self.status()["latest"]["theta_out_rad"])
-        target = round(here + 2.0, 1)
+        here = math.degrees(self.status()["latest"]["theta_out_rad"]) % 360
+        target = round((here + 2.0) % 360, 1)
         self.set_field("goto-angle", target)
         self.set_field("jog-speed", 60)
         self.browser.find_element(By.CSS_SELECTOR, "#manual-goto button").click()
-        self.until("arrived", lambda: abs(math.degrees(
-            self.status()["latest"]["theta_out_rad"]) - target) < 0.05
-            and self.status()["manual"]["goto_deg"] is None, 20)
+        def off_target(status):
+            angle = math.degrees(status["latest"]["theta_out_rad"])
+            return abs((angle - target + 180) % 360 - 180)
+        self.until("arrived", lambda: off_target(self.status()) < 0.05
+                   and self.status()["manual"]["goto_deg"] is None, 20)
         self.assertEqual(self.status()["servo"], "servo on, holding")
 
         self.set_field("brake-torque", 5)

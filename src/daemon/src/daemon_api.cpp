@@ -270,7 +270,7 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     if (seg.size() == 3 && seg[1] == "manual") {
       if (!post) return method_not_allowed("POST");
       if (auto refused = refuse_change(request)) return std::move(*refused);
-      return manual_request(bench_, live_, seg[2], request.body);
+      return manual_request(bench_, seg[2], request.body);
     }
     if (seg.size() == 2 && seg[1] == "procedures") {
       return get ? ApiResponse{200, runs::procedures_json()} : method_not_allowed("GET");

@@ -12,8 +12,6 @@ namespace wavebench::daemon {
 
 namespace {
 
-constexpr double kDegPerRad = 180 / std::numbers::pi;
-
 struct BadBody {
   std::string detail;
 };
@@ -29,16 +27,6 @@ double number_at(const nlohmann::json& body, const char* key, const char* expect
   return it->get<double>();
 }
 
-std::optional<double> output_angle_deg(const LiveSampleBuffer& live) {
-  const auto total = live.total();
-  if (total == 0) return std::nullopt;
-  const auto newest = live.since(total - 1, 1);
-  if (newest.samples.empty()) return std::nullopt;
-  const auto& x = newest.samples.back().sample;
-  if (!x.valid(storage::kThetaOutValid)) return std::nullopt;
-  return x.theta_out_rad * kDegPerRad;
-}
-
 ApiResponse answer(BenchThread& bench, const std::optional<ManualRefusal>& refused) {
   if (refused) {
     return api_error(refused->status, refused->status == 400 ? "bad request" : "conflict",
@@ -49,45 +37,41 @@ ApiResponse answer(BenchThread& bench, const std::optional<ManualRefusal>& refus
 
 struct Action {
   std::set<std::string> keys;
-  std::function<ApiResponse(BenchThread&, const LiveSampleBuffer&, const nlohmann::json&)> act;
+  std::function<ApiResponse(BenchThread&, const nlohmann::json&)> act;
 };
 
 const std::map<std::string, Action>& actions() {
   static const std::map<std::string, Action> table = {
       {"jog",
        {{"speed_rpm"},
-        [](BenchThread& bench, const LiveSampleBuffer&, const nlohmann::json& body) {
+        [](BenchThread& bench, const nlohmann::json& body) {
           const double rpm = number_at(body, "speed_rpm", "a signed speed in rpm at the input");
           return answer(bench, bench.manual([&](ManualSession& m) { return m.jog(rpm); }));
         }}},
       {"stop",
        {{},
-        [](BenchThread& bench, const LiveSampleBuffer&, const nlohmann::json&) {
+        [](BenchThread& bench, const nlohmann::json&) {
           bench.manual_stop("manual stop from the console");
           return answer(bench, std::nullopt);
         }}},
       {"goto",
        {{"angle_deg", "speed_rpm"},
-        [](BenchThread& bench, const LiveSampleBuffer& live, const nlohmann::json& body) {
+        [](BenchThread& bench, const nlohmann::json& body) {
           const double angle = number_at(body, "angle_deg", "an output angle in degrees");
           const double max = bench.status().manual.max_speed_rpm;
           const double rpm =
               number_at(body, "speed_rpm", "a speed in rpm at the input", std::optional(max));
-          const auto here = output_angle_deg(live);
-          if (!here)
-            return api_error(409, "conflict", "no output angle measured yet: nothing to go from");
-          return answer(bench,
-                        bench.manual([&](ManualSession& m) { return m.go_to(angle, rpm, *here); }));
+          return answer(bench, bench.manual([&](ManualSession& m) { return m.go_to(angle, rpm); }));
         }}},
       {"brake",
        {{"torque_nm"},
-        [](BenchThread& bench, const LiveSampleBuffer&, const nlohmann::json& body) {
+        [](BenchThread& bench, const nlohmann::json& body) {
           const double torque = number_at(body, "torque_nm", "a brake torque in N·m");
           return answer(bench, bench.manual([&](ManualSession& m) { return m.brake(torque); }));
         }}},
       {"servo",
        {{"on"},
-        [](BenchThread& bench, const LiveSampleBuffer&, const nlohmann::json& body) {
+        [](BenchThread& bench, const nlohmann::json& body) {
           const auto on = body.find("on");
           if (on == body.end() || !on->is_boolean())
             throw BadBody{"on: got " + (on == body.end() ? std::string("nothing") : on->dump()) +
@@ -109,7 +93,7 @@ const std::map<std::string, Action>& actions() {
         }}},
       {"alive",
        {{},
-        [](BenchThread& bench, const LiveSampleBuffer&, const nlohmann::json&) {
+        [](BenchThread& bench, const nlohmann::json&) {
           return answer(bench, bench.manual([](ManualSession& m) {
             m.keep_alive();
             return std::optional<ManualRefusal>();
@@ -141,8 +125,7 @@ nlohmann::json manual_json(const ManualState& s) {
       {"hold_timeout_s", s.hold_timeout_s}};
 }
 
-ApiResponse manual_request(BenchThread& bench, const LiveSampleBuffer& live,
-                           const std::string& action, const std::string& body) {
+ApiResponse manual_request(BenchThread& bench, const std::string& action, const std::string& body) {
   const auto it = actions().find(action);
   if (it == actions().end())
     return api_error(404, "not found",
@@ -166,7 +149,7 @@ ApiResponse manual_request(BenchThread& bench, const LiveSampleBuffer& live,
     }
   }
   try {
-    return it->second.act(bench, live, parsed);
+    return it->second.act(bench, parsed);
   } catch (const BadBody& bad) {
     return api_error(400, "bad request", bad.detail);
   }

@@ -131,20 +131,22 @@ bool ManualSession::stop(const std::string& why) {
     going = going_deg_.has_value();
     wanted_.jog_rpm = 0;
     wanted_.goto_deg.reset();
-    last_stop_ = why;
+    // A release is the normal end of a jog: only an interrupted go-to is worth telling.
+    if (going) last_stop_ = why;
   }
   wake_();
   return going;
 }
 
-std::optional<ManualRefusal> ManualSession::go_to(double angle_deg, double speed_rpm,
-                                                  double current_out_deg) {
+std::optional<ManualRefusal> ManualSession::go_to(double angle_deg, double speed_rpm) {
   if (auto refused = check_speed("speed_rpm", speed_rpm, false)) return refused;
-  if (!std::isfinite(angle_deg) || std::abs(angle_deg - current_out_deg) > limits_.max_move_deg) {
+  // An angle within the output's turn: the move goes the shorter way round to it, so it is
+  // never more than half a turn of the output.
+  if (!std::isfinite(angle_deg) || std::abs(angle_deg) > limits_.max_move_deg) {
     return ManualRefusal{400, "angle_deg: got " + number_text(angle_deg) +
-                                  ", expected an output angle within " +
-                                  number_text(limits_.max_move_deg) + "° of where it stands (" +
-                                  number_text(std::round(current_out_deg * 10) / 10) + "°)"};
+                                  ", expected an output angle from -" +
+                                  number_text(limits_.max_move_deg) + " to " +
+                                  number_text(limits_.max_move_deg) + "°"};
   }
   {
     std::lock_guard lock(mutex_);
@@ -189,7 +191,6 @@ void ManualSession::servo(bool on) {
       wanted_.jog_rpm = 0;
       wanted_.brake_nm = 0;
       wanted_.goto_deg.reset();
-      last_stop_ = "servo switched off";
     }
   }
   wake_();
@@ -216,9 +217,12 @@ void ManualSession::end_all(bench::Bench& bench, const std::string& why) noexcep
 void ManualSession::do_go_to(bench::Bench& bench, double angle_deg, double speed_rpm) {
   const auto& sample = bench.latest_sample();
   const auto& sense = bench.description().sense;
+  // The shorter way round: the difference to the angle within the turn, in (-180°, 180°].
+  const double here_deg = sample.theta_out_rad * kDegPerRad;
+  double delta_deg = std::remainder(angle_deg - here_deg, 360.0);
+  if (delta_deg <= -180) delta_deg += 360;
   const double target_in =
-      sample.theta_in_rad +
-      sense.ratio * sense.direction_sign * (angle_deg / kDegPerRad - sample.theta_out_rad);
+      sample.theta_in_rad + sense.ratio * sense.direction_sign * delta_deg / kDegPerRad;
   applied_.powered = true;
   {
     std::lock_guard lock(mutex_);

@@ -41,8 +41,10 @@ std::string servo_text(const BenchStatus& s, const std::optional<storage::SyncSa
 }
 
 std::string brake_text(const BenchStatus& s, const std::optional<storage::SyncSample>& latest) {
+  // The brake output is on only while the bench is active (bench.hpp); the controller's
+  // readback confirms it, and may lag the lifecycle by a moment.
   const bool output_on = s.acquisition && s.acquisition->brake_output_on.value_or(false);
-  if (!output_on || !bench::operational(s.lifecycle)) return "brake off";
+  if (!output_on || s.lifecycle != bench::BenchLifecycle::kActive) return "brake off";
   if (latest && latest->valid(storage::kBrakeTorqueValid))
     return "brake " + fixed(latest->brake_torque_nm, 1) + " N·m";
   return "brake on";

@@ -33,6 +33,7 @@ class ManualPanel {
     const button = (id, text, label) => el('button', { id, type: 'button', class: 'jog', 'aria-label': label }, text);
     this.servoWords = el('strong', { id: 'manual-servo' }, '…');
     this.brakeWords = el('span', { id: 'manual-brake' }, '');
+    this.outputWords = el('span', { id: 'manual-output' }, '');
     this.reverse = button('jog-reverse', '◀', 'jog reverse (hold)');
     this.forward = button('jog-forward', '▶', 'jog forward (hold)');
     this.speed = el('input', { id: 'jog-speed', type: 'number', min: '1', max: '60', step: '1', value: '30', inputmode: 'decimal' });
@@ -48,9 +49,10 @@ class ManualPanel {
       el('label', {}, 'Brake torque ', this.torque, ' N·m'), el('button', { type: 'submit' }, 'Set'));
     this.root.replaceChildren(
       el('h2', {}, 'Manual'),
-      el('div', { class: 'manual-state', 'aria-live': 'polite' }, 'Servo: ', this.servoWords, ' · ', this.brakeWords),
+      el('div', { class: 'manual-state', 'aria-live': 'polite' }, 'Servo: ', this.servoWords, ' · ', this.brakeWords, ' · ', this.outputWords),
+      el('div', { class: 'manual-row' }, this.servo),
       el('div', { class: 'manual-row jog-row' }, this.reverse,
-        el('label', {}, 'Speed ', this.speed, ' rpm'), this.forward, this.servo),
+        el('label', {}, 'Speed ', this.speed, ' rpm'), this.forward),
       el('p', { class: 'hint' }, 'Hold ◀ or ▶ (or Space on it) to turn the input; it stops when released. ', this.limits),
       this.goto, this.brakeForm, this.note, this.error);
     this.controls = [this.reverse, this.forward, this.speed, this.angle, this.torque, this.servo,
@@ -79,7 +81,10 @@ class ManualPanel {
           this.stopJog();
         }
       });
-      button.addEventListener('blur', () => this.stopJog());
+      // Only this button's own jog: pressing the other one moves focus away from this one.
+      button.addEventListener('blur', () => {
+        if (this.jogging === direction) this.stopJog();
+      });
       button.addEventListener('contextmenu', (e) => e.preventDefault());
     }
     window.addEventListener('blur', () => this.stopJog());
@@ -120,6 +125,7 @@ class ManualPanel {
   stopJog() {
     if (this.jogging === 0) return;
     this.jogging = 0;
+    this.releasedAt = Date.now(); // for the browser test's stop latency
     this.root.classList.remove('jogging');
     this.send('stop', {});
   }
@@ -192,6 +198,10 @@ class ManualPanel {
     this.servoWords.textContent = s.servo || '—';
     this.brakeWords.textContent = s.brake || '';
     this.root.dataset.servo = s.servo || '';
+    const out = s.latest && s.latest.theta_out_rad;
+    // The output's angle within its turn, as a go-to takes it.
+    this.outputWords.textContent = typeof out === 'number'
+      ? `output at ${((((out * 180) / Math.PI) % 360 + 360) % 360).toFixed(1)}°` : '';
     if (m.max_speed_rpm) this.speed.max = String(m.max_speed_rpm);
     if (m.max_brake_torque_nm !== undefined) this.torque.max = String(m.max_brake_torque_nm);
     this.limits.textContent = m.max_speed_rpm
@@ -201,7 +211,9 @@ class ManualPanel {
     const blocked = s.run ? 'A run is active: the manual panel waits until it has ended.'
       : s.state === 'fault' ? 'The bench is in fault: reset it first.'
         : s.state === 'idle' ? 'No bench connected.' : '';
-    this.note.textContent = blocked || (m.last_stop ? `Last stop: ${m.last_stop}` : '');
+    // Why manual control last ended, while it matters: until the panel is used again.
+    const idle = !m.servo_on && s.servo === 'servo off';
+    this.note.textContent = blocked || (idle && m.last_stop ? `Last stop: ${m.last_stop}` : '');
     for (const c of this.controls) c.disabled = Boolean(blocked) && c !== this.servo;
     this.servo.disabled = Boolean(blocked) && !m.servo_on;
     if (blocked) this.stopJog();

@@ -2,7 +2,7 @@
 // POST /api/manual/{action} (the console's manual panel, manual_session.hpp):
 //   jog    {"speed_rpm": ±n}        run the input at n rpm; repeat every ~100 ms while held
 //   stop   {}                       end the jog (a go-to in progress: trips the bench)
-//   goto   {"angle_deg": a, "speed_rpm": n}   move the output to a degrees
+//   goto   {"angle_deg": a, "speed_rpm": n}   turn the output the shorter way to a° in its turn
 //   brake  {"torque_nm": t}         brake torque (0: off)
 //   servo  {"on": true|false}       hold the input / inactive (drive disabled, brake off)
 //   alive  {}                       keep-alive while the panel holds something
@@ -14,12 +14,10 @@
 
 #include "wavebench/daemon/bench_thread.hpp"
 #include "wavebench/daemon/daemon_api.hpp"
-#include "wavebench/daemon/live_sample_buffer.hpp"
 
 namespace wavebench::daemon {
 
-ApiResponse manual_request(BenchThread& bench, const LiveSampleBuffer& live,
-                           const std::string& action, const std::string& body);
+ApiResponse manual_request(BenchThread& bench, const std::string& action, const std::string& body);
 
 // The panel's part of /api/status: its state and its bounds.
 nlohmann::json manual_json(const ManualState& state);

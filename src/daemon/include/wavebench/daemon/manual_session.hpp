@@ -31,7 +31,7 @@ struct ManualLimits {
   // The panel's own bound on the input speed (jog and go-to), below the bench's safety limit
   // whatever this says: slow enough to mount a unit by hand.
   double max_speed_rpm = 60;
-  // The farthest one go-to may move the output, from where it stands [deg].
+  // A go-to's angle is within the output's turn, ±this [deg]; it moves the shorter way there.
   double max_move_deg = 360;
 };
 
@@ -60,11 +60,12 @@ class ManualSession {
  public:
   using Clock = std::chrono::steady_clock;
   // The jog's keep-alive silence after which the bench thread stops the input, and the bound
-  // it guarantees: the silence plus one serve slice plus the drive's ramp down (20 ms from
-  // 60 rpm at the simulated drive's 50 rev/s²). The page repeats every 100 ms: two repeats may
-  // be lost or late before the jog stops.
+  // it guarantees on the input standing, counted from the last keep-alive the page sent: the
+  // silence, the request's own way to the daemon, one serve slice and the drive's ramp down
+  // (20 ms from 60 rpm at the simulated drive's 50 rev/s²); measured about 400 ms on a loaded
+  // test machine. The page repeats every 100 ms: two repeats may be lost or late.
   static constexpr auto kJogTimeout = std::chrono::milliseconds(300);
-  static constexpr auto kStopBound = std::chrono::milliseconds(400);
+  static constexpr auto kStopBound = std::chrono::milliseconds(500);
   static constexpr auto kHoldTimeout = std::chrono::seconds(5);
   // How often the bench thread serves the session while it is engaged.
   static constexpr auto kServeSlice = std::chrono::milliseconds(20);
@@ -81,7 +82,7 @@ class ManualSession {
   // Ends a jog (or a held servo's motion). Returns true when a go-to is in progress: the
   // caller then trips the bench, the only way to interrupt it.
   bool stop(const std::string& why);
-  std::optional<ManualRefusal> go_to(double angle_deg, double speed_rpm, double current_out_deg);
+  std::optional<ManualRefusal> go_to(double angle_deg, double speed_rpm);
   std::optional<ManualRefusal> brake(double torque_nm);
   void servo(bool on);
   void keep_alive();
