@@ -488,6 +488,10 @@ void BenchThread::shutdown(const std::string& reason) {
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
   // The bench is safe and disconnected; what was recorded is finished before the daemon ends.
+  if (const auto pending = post_runs_.status(); !pending.empty()) {
+    spdlog::info("waiting for the post-run work of {} recorded run(s) (about {:.0f} s)",
+                 pending.size(), pending.back().remaining_s);
+  }
   post_runs_.drain();
 }
 
