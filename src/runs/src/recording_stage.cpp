@@ -196,7 +196,7 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
   c.paths = store.paths(c.outcome.run_id);
   c.outcome.dir = c.paths.dir;
   const auto started = std::chrono::steady_clock::now();
-  const RecordingClock clock(estimate.bench_time_s);
+  RecordingClock clock(estimate.bench_time_s);
   const auto report_progress = [&](const std::string& phase, double procedure_fraction) {
     if (!progress) return;
     const double elapsed =
