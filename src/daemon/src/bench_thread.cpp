@@ -217,8 +217,8 @@ void BenchThread::run_job(Job& job) {
   try {
     auto recorded = launcher_.record(*bench_, store_, job.request, progress);
     job.settle({StartOutcome::Kind::kStarted, recorded.run_id, ""});
-    spdlog::info("run {} recorded; its post-run work is queued (about {:.0f} s)",
-                 recorded.run_id, recorded.post_run_estimate_s);
+    spdlog::info("run {} recorded; its post-run work is queued (about {:.0f} s)", recorded.run_id,
+                 recorded.post_run_estimate_s);
     finished = {recorded.run_id, "processing", "", recorded.procedure, recorded.unit_serial, ""};
     post_runs_.push(std::move(recorded));
   } catch (const std::invalid_argument& e) {
