@@ -45,7 +45,11 @@ class Sampler(threading.Thread):
     def run(self):
         while not self.stop:
             t = time.monotonic()
-            code, s = api(self.d, 'GET', '/api/status')
+            try:
+                code, s = api(self.d, 'GET', '/api/status')
+            except OSError as e:
+                print(f'status read failed: {e}')
+                code = None
             if code == 200:
                 self.samples.append((t, s))
             time.sleep(max(0, POLL_S - (time.monotonic() - t)))
@@ -183,15 +187,25 @@ def main():
         if not last or last['id'] != second:
             failures.append(f'last_run is {last}, expected the newest run {second}')
 
+        # The recording's phases as sampled: where the time goes, for the estimates.
+        last = None
+        for t, s in sampler.samples:
+            run = s.get('run') or {}
+            key = (run.get('id'), run.get('phase'))
+            if run and key != last:
+                print(f'  {t:.2f} {key[0]} {key[1]}: stated {run.get("remaining_s")} s left')
+                last = key
         worst, judged, skipped, bad = judge(sampler.samples)
         print(f'remaining_s: {judged} samples judged, worst stated/true {worst:.2f} '
               f'({skipped} within {RESOLUTION_S} s of an end not judged)')
         failures += bad[:20]
+    except Exception as e:  # noqa: BLE001 - the daemon's log says why
+        failures.append(f'{type(e).__name__}: {e}')
     finally:
         d.stop()
     if failures:
         print('FAIL:\n  ' + '\n  '.join(failures))
-        print(''.join(d.output[-40:]))
+        print(''.join(d.output[-60:]))
         return 1
     print('1 passed, 0 failed')
     return 0

@@ -1,6 +1,8 @@
 // The post-run queue and the stated progress alone (issue #21): one run at a time in order,
 // drain() waits for all, the time left counts down between reports and never reaches zero
 // while the work goes on.
+#include "wavebench/daemon/post_run_queue.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -8,7 +10,6 @@
 #include <mutex>
 #include <thread>
 
-#include "wavebench/daemon/post_run_queue.hpp"
 #include "wavebench/daemon/stated_progress.hpp"
 
 namespace wavebench::daemon {
@@ -85,8 +86,7 @@ TEST(PostRunQueue, AFailingJobIsReportedAndTheNextStillRuns) {
     std::lock_guard lock(m);
     if (!e.empty()) errors.push_back(id + ": " + e);
   });
-  queue.push({"x", "static", "U1", 1.0,
-              [](const runs::ProgressSink&) -> runs::RunOutcome {
+  queue.push({"x", "static", "U1", 1.0, [](const runs::ProgressSink&) -> runs::RunOutcome {
                 throw std::runtime_error("disk gone");
               }});
   queue.push(job("y", order, m, 1ms));

@@ -13,22 +13,23 @@ namespace wavebench::runs {
 namespace {
 
 TEST(RecordingClock, BeforeThePaceIsKnownThePlanSaysWhatIsLeft) {
-  const RecordingClock clock(20.0);
+  RecordingClock clock(20.0);
   const auto p = clock.at(0, 0);
   EXPECT_GE(p.remaining_s, 20.0);
   EXPECT_DOUBLE_EQ(p.fraction, 0);
 }
 
 TEST(RecordingClock, ASlowerPaceThanPlannedWins) {
-  const RecordingClock clock(10.0);
-  // Half done after 20 s: at least another 20 s, whatever the plan said.
-  const auto p = clock.at(0.5, 20.0);
+  RecordingClock clock(10.0);
+  // A fast run-in to 5 %, then 45 % more in 20 s: at least another 20 s, whatever the plan said.
+  clock.at(0.05, 0.2);
+  const auto p = clock.at(0.5, 20.2);
   EXPECT_GE(p.remaining_s, 20.0);
-  EXPECT_NEAR(p.fraction, 20.0 / (20.0 + p.remaining_s), 1e-12);
+  EXPECT_NEAR(p.fraction, 20.2 / (20.2 + p.remaining_s), 1e-12);
 }
 
 TEST(RecordingClock, DoneIsDone) {
-  const RecordingClock clock(10.0);
+  RecordingClock clock(10.0);
   EXPECT_DOUBLE_EQ(clock.at(1.0, 12.0).remaining_s, 0);
   EXPECT_DOUBLE_EQ(clock.at(1.0, 12.0).fraction, 1.0);
 }

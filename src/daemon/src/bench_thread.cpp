@@ -228,8 +228,8 @@ void BenchThread::run_job(Job& job) {
   try {
     auto recorded = launcher_.record(*bench_, store_, job.request, progress);
     job.settle({StartOutcome::Kind::kStarted, recorded.run_id, ""});
-    spdlog::info("run {} recorded; its post-run work is queued (about {:.0f} s)",
-                 recorded.run_id, recorded.post_run_estimate_s);
+    spdlog::info("run {} recorded; its post-run work is queued (about {:.0f} s)", recorded.run_id,
+                 recorded.post_run_estimate_s);
     finished = {recorded.run_id, "processing", "", recorded.procedure, recorded.unit_serial, ""};
     post_runs_.push(std::move(recorded));
   } catch (const std::invalid_argument& e) {
@@ -574,6 +574,10 @@ void BenchThread::shutdown(const std::string& reason) {
   wake_.notify_all();
   if (thread_.joinable()) thread_.join();
   // The bench is safe and disconnected; what was recorded is finished before the daemon ends.
+  if (const auto pending = post_runs_.status(); !pending.empty()) {
+    spdlog::info("waiting for the post-run work of {} recorded run(s) (about {:.0f} s)",
+                 pending.size(), pending.back().remaining_s);
+  }
   post_runs_.drain();
 }
 

@@ -553,12 +553,13 @@ nlohmann::json DaemonApi::status_json() const {
   }
   if (s.last_run) {
     const auto& l = *s.last_run;
-    j["last_run"] = {{"id", l.run_id},
-                     {"status", l.status},
-                     {"reason", l.reason},
-                     {"procedure", l.procedure},
-                     {"unit_serial", l.unit_serial},
-                     {"verdict", l.verdict.empty() ? nlohmann::json(nullptr) : nlohmann::json(l.verdict)}};
+    j["last_run"] = {
+        {"id", l.run_id},
+        {"status", l.status},
+        {"reason", l.reason},
+        {"procedure", l.procedure},
+        {"unit_serial", l.unit_serial},
+        {"verdict", l.verdict.empty() ? nlohmann::json(nullptr) : nlohmann::json(l.verdict)}};
   } else {
     j["last_run"] = nullptr;
   }
@@ -566,13 +567,13 @@ nlohmann::json DaemonApi::status_json() const {
   // in the background, in the order they will finish.
   j["post_runs"] = nlohmann::json::array();
   for (const auto& p : s.post_runs) {
-    j["post_runs"].push_back(
-        {{"run_id", p.run_id},
-         {"serial", p.unit_serial},
-         {"procedure", p.procedure},
-         {"phase", p.phase},
-         {"progress", p.fraction},
-         {"remaining_s", p.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(p.remaining_s)}});
+    j["post_runs"].push_back({{"run_id", p.run_id},
+                              {"serial", p.unit_serial},
+                              {"procedure", p.procedure},
+                              {"phase", p.phase},
+                              {"progress", p.fraction},
+                              {"remaining_s", p.remaining_s < 0 ? nlohmann::json(nullptr)
+                                                                : nlohmann::json(p.remaining_s)}});
   }
   j["acquisition"] = s.acquisition ? acquisition_json(*s.acquisition) : nlohmann::json(nullptr);
   j["live_samples"] = live_.total();
@@ -776,10 +777,10 @@ ApiResponse DaemonApi::run_detail(const std::string& id) const {
   j["post_run"] = nullptr;
   for (const auto& p : bench_.status().post_runs) {
     if (p.run_id != id) continue;
-    j["post_run"] = {
-        {"phase", p.phase},
-        {"progress", p.fraction},
-        {"remaining_s", p.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(p.remaining_s)}};
+    j["post_run"] = {{"phase", p.phase},
+                     {"progress", p.fraction},
+                     {"remaining_s",
+                      p.remaining_s < 0 ? nlohmann::json(nullptr) : nlohmann::json(p.remaining_s)}};
   }
   return {200, j};
 }

@@ -12,7 +12,9 @@ PostRunQueue::PostRunQueue(Done done) : done_(std::move(done)) {
   worker_ = std::thread([this] { worker_main(); });
 }
 
-PostRunQueue::~PostRunQueue() { drain(); }
+PostRunQueue::~PostRunQueue() {
+  drain();
+}
 
 void PostRunQueue::push(RecordedLaunch run) {
   auto entry = std::make_shared<Entry>();
@@ -35,8 +37,8 @@ std::vector<PostRunStatus> PostRunQueue::status() const {
     const bool running = i == 0 && front_started_;
     const auto p = running ? e.progress.at(now) : ProgressNow{0, e.run.post_run_estimate_s};
     const double own = std::max(0.0, p.remaining_s);
-    out.push_back({e.run.run_id, e.run.unit_serial, e.run.procedure, e.phase, p.fraction,
-                   ahead + own});
+    out.push_back(
+        {e.run.run_id, e.run.unit_serial, e.run.procedure, e.phase, p.fraction, ahead + own});
     ahead += own;
   }
   return out;

@@ -21,10 +21,10 @@ namespace {
 // sample, dynamic 2.2e-4 to 3.4e-4, unit twin 2.9e-4 per record replayed, report under 2 s),
 // the slowest seen, times a margin: the worker runs at nice 19 beside the next recording.
 constexpr double kMargin = 1.5;
-constexpr double kTwinDrainS = 0.5;              // the backlog the twin has left
-constexpr double kResultsS = 0.3;                // results.json, index row
-constexpr double kUnitTwinPerSampleS = 3.0e-4;   // each record the unit twin replays
-constexpr double kReportPerSampleS = 1.5e-5;     // plots over the record
+constexpr double kTwinDrainS = 0.5;             // the backlog the twin has left
+constexpr double kResultsS = 0.3;               // results.json, index row
+constexpr double kUnitTwinPerSampleS = 3.0e-4;  // each record the unit twin replays
+constexpr double kReportPerSampleS = 1.5e-5;    // plots over the record
 constexpr double kReportS = 1.0;
 constexpr std::uint64_t kSampleBytesEstimate = 100;  // a samples.wbs record, roughly
 
@@ -39,7 +39,9 @@ bool calibrates(const RunContext& c) {
   return c.twin_beside && c.parsed.calibrate_twin && c.complete();
 }
 
-double estimate_twin(const RunContext& c) { return c.twin_beside ? kMargin * kTwinDrainS : 0; }
+double estimate_twin(const RunContext& c) {
+  return c.twin_beside ? kMargin * kTwinDrainS : 0;
+}
 
 double estimate_calibration(const RunContext& c) {
   if (!calibrates(c)) return 0;
@@ -47,8 +49,12 @@ double estimate_calibration(const RunContext& c) {
   return kMargin * calibration_per_sample_s(c.request.procedure) * static_cast<double>(n);
 }
 
-double estimate_verdict(const RunContext&) { return 0; }
-double estimate_results(const RunContext&) { return kMargin * kResultsS; }
+double estimate_verdict(const RunContext&) {
+  return 0;
+}
+double estimate_results(const RunContext&) {
+  return kMargin * kResultsS;
+}
 
 // The unit twin replays the unit's newest complete run of each procedure: their records on
 // disk now, this run's in place of its own procedure's.
@@ -67,8 +73,8 @@ double estimate_unit_twin(const RunContext& c) {
       std::error_code ec;
       const auto bytes = std::filesystem::file_size(c.store->paths(r.id).samples, ec);
       if (!ec) {
-        samples += std::min<std::uint64_t>(bytes / kSampleBytesEstimate,
-                                           twin::kMaxCalibrationSamples);
+        samples +=
+            std::min<std::uint64_t>(bytes / kSampleBytesEstimate, twin::kMaxCalibrationSamples);
       }
     }
   } catch (const std::exception&) {
@@ -104,7 +110,9 @@ bool write_results_file(RunContext& c) {
 
 }  // namespace
 
-std::span<const PostRunStage> post_run_stages() { return kStages; }
+std::span<const PostRunStage> post_run_stages() {
+  return kStages;
+}
 
 void mark_processing(RunContext& c) {
   auto interim = c.results;
@@ -141,8 +149,8 @@ void calibrate_twin(RunContext& c) {
     twin::TwinCalibrationOptions options;
     options.solver = c.twin_solver;
     const auto& s = c.procedure_result.static_result;
-    c.calibration = twin::calibrate_twin(c.twin_gear, c.description.sense, samples,
-                                         s ? &*s : nullptr, options);
+    c.calibration =
+        twin::calibrate_twin(c.twin_gear, c.description.sense, samples, s ? &*s : nullptr, options);
     twin::write_calibrated_twin_config(c.paths.dir / "twin-calibrated.yaml", *c.calibration);
     // The calibrated twin's replay, for the run page's before/after plot.
     twin::write_replay_csv(c.paths.dir / "twin-calibrated.csv", c.calibration->calibrated,

@@ -11,7 +11,7 @@
 namespace wavebench::runs {
 
 struct PostRunStage {
-  const char* phase;                         // as /api/status shows it
+  const char* phase;                        // as /api/status shows it
   double (*estimate_s)(const RunContext&);  // wall seconds, with a margin; 0 when skipped
   void (*run)(RunContext&);
 };

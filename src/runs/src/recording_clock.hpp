@@ -1,4 +1,6 @@
 #pragma once
+#include <optional>
+
 // The recording's progress by time, not by step: a static run's positions or a dynamic run's
 // revolutions do not take equal shares of its duration (run-in, approaches, the procedure's
 // own analysis). From the plan's estimate (run_plan.hpp) before the pace is known, then from
@@ -19,10 +21,14 @@ class RecordingClock {
   explicit RecordingClock(double planned_s, double wall_per_bench_s = 1.0);
   // `procedure_fraction`: what the procedure reported (0..1); `elapsed_s`: wall seconds since
   // the recording started.
-  TimedProgress at(double procedure_fraction, double elapsed_s) const;
+  TimedProgress at(double procedure_fraction, double elapsed_s);
 
  private:
+  struct Origin {
+    double fraction, elapsed_s;
+  };
   double planned_s_;
+  std::optional<Origin> origin_;  // where the pace is measured from
 };
 
 }  // namespace wavebench::runs

@@ -150,8 +150,7 @@ void choose_twin(RunContext& c) {
   c.twin_source = {{"kind", "nominal"}, {"case", c.description.twin_case_path}};
   if (!c.request.twin || c.unit_serial.empty()) return;
   try {
-    auto unit =
-        twin::load_unit_twin(c.store->root(), c.unit_serial, c.description.sense.ratio);
+    auto unit = twin::load_unit_twin(c.store->root(), c.unit_serial, c.description.sense.ratio);
     if (!unit) return;
     c.twin_gear = std::move(unit->twin.gear);
     c.twin_solver = unit->solver;
@@ -159,10 +158,9 @@ void choose_twin(RunContext& c) {
     for (const auto& r : unit->provenance.value("runs", nlohmann::json::array())) {
       from.push_back({{"run_id", r.value("run_id", "")}, {"procedure", r.value("procedure", "")}});
     }
-    c.twin_source = {
-        {"kind", "unit"},
-        {"case", std::filesystem::relative(unit->case_file, c.store->root()).string()},
-        {"calibrated_from", from}};
+    c.twin_source = {{"kind", "unit"},
+                     {"case", std::filesystem::relative(unit->case_file, c.store->root()).string()},
+                     {"calibrated_from", from}};
   } catch (const std::exception& e) {
     c.results["warnings"].push_back(std::string(e.what()) + "; the nominal twin case is used");
   }
@@ -195,21 +193,21 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
                        const ProgressSink& progress) {
   RunEstimate estimate;
   // Nothing on disk and nothing moved before the whole request passes.
-  auto context = std::make_unique<RunContext>(check_and_parse(
-      request, bench.description(), bench.extra_channels().size(), run_budget(store.root()),
-      &estimate));
+  auto context = std::make_unique<RunContext>(check_and_parse(request, bench.description(),
+                                                              bench.extra_channels().size(),
+                                                              run_budget(store.root()), &estimate));
   RunContext& c = *context;
   c.request = request;
   c.description = bench.description();
   c.store = &store;
   c.unit_serial = request.unit_serial.empty() ? c.description.unit_serial : request.unit_serial;
-  c.outcome.run_id = store.create_run(request.procedure, c.unit_serial, request.config_text,
-                                      c.parsed.limits.dump(),
-                                      request.spec ? request.spec->name : "");
+  c.outcome.run_id =
+      store.create_run(request.procedure, c.unit_serial, request.config_text,
+                       c.parsed.limits.dump(), request.spec ? request.spec->name : "");
   c.paths = store.paths(c.outcome.run_id);
   c.outcome.dir = c.paths.dir;
   const auto started = std::chrono::steady_clock::now();
-  const RecordingClock clock(estimate.bench_time_s);
+  RecordingClock clock(estimate.bench_time_s);
   const auto report_progress = [&](const std::string& phase, double procedure_fraction) {
     if (!progress) return;
     const double elapsed =
@@ -255,8 +253,7 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
         c.abort_with(log.failed() ? log.failure() : std::string(e.what()));
       } catch (const std::exception& e) {
         make_safe(bench);
-        c.abort_with(log.failed() ? log.failure()
-                                  : std::string("procedure failed: ") + e.what());
+        c.abort_with(log.failed() ? log.failure() : std::string("procedure failed: ") + e.what());
       }
     }
     // Every queued sample to the file before the run is finalised. The log may fail after the

@@ -14,9 +14,15 @@ RecordedRun::~RecordedRun() = default;
 RecordedRun::RecordedRun(RecordedRun&&) noexcept = default;
 RecordedRun& RecordedRun::operator=(RecordedRun&&) noexcept = default;
 
-const std::string& RecordedRun::run_id() const { return context_->outcome.run_id; }
-const std::string& RecordedRun::procedure() const { return context_->request.procedure; }
-const std::string& RecordedRun::unit_serial() const { return context_->unit_serial; }
+const std::string& RecordedRun::run_id() const {
+  return context_->outcome.run_id;
+}
+const std::string& RecordedRun::procedure() const {
+  return context_->request.procedure;
+}
+const std::string& RecordedRun::unit_serial() const {
+  return context_->unit_serial;
+}
 
 double RecordedRun::post_run_estimate_s() const {
   double total = 0;
