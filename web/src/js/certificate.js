@@ -68,7 +68,7 @@ function unitFacts(run, results) {
   return el('dl', { class: 'cert-facts', id: 'cert-unit' },
     fact('Unit serial', run.unit_serial || results.unit_serial),
     fact('Gear model', spec.model),
-    fact('Spec', spec.name ? `${spec.name}${spec.description ? ` – ${spec.description}` : ''}` : null),
+    fact('Spec', spec.name ? `${spec.name}${spec.description ? ` – ${spec.description.replace(/N\*m/g, 'N·m')}` : ''}` : null),
     fact('Gear ratio', results.gear ? `${num(results.gear.ratio)} : 1` : null));
 }
 

@@ -88,7 +88,9 @@ export function timeTicks(u, splits, axis, space, step) {
     const d = new Date(s * 1000);
     if (step >= 86400) return isoDay(d);
     const today = isoDay(d);
-    const label = today !== day ? `${isoMinute(d)}\n${today}` : isoMinute(d);
+    // Ticks under a minute apart need their seconds, or neighbours read the same.
+    const time = step < 60 ? d.toISOString().slice(11, 19) : isoMinute(d);
+    const label = today !== day ? `${time}\n${today}` : time;
     day = today;
     return label;
   });
