@@ -236,6 +236,8 @@ class RunExportsCertificateTest(ConsolePageTest):
         self.assertEqual([t for t in times if t], [], "times to the second")
         # Each figure ± U, U to two significant digits and the value at its last decimal.
         for cell in self.browser.find_elements(By.CSS_SELECTOR, "#cert-limits tbody tr td:nth-child(4)"):
+            if cell.text.endswith("(no U stated)"):  # a model-fit figure (the twin residual)
+                continue
             m = re.fullmatch(r"(-?\d+(?:\.(\d+))?) ± (\d+(?:\.(\d+))?)", cell.text)
             self.assertIsNotNone(m, cell.text)
             self.assertEqual(len(m.group(2) or ""), len(m.group(4) or ""), cell.text)
@@ -251,7 +253,7 @@ class RunExportsCertificateTest(ConsolePageTest):
         self.assertEqual(sheet.get_attribute("data-certificate"), "false")
         banner = self.browser.find_element(By.ID, "not-certificate").text
         self.assertIn("NOT A CERTIFICATE", banner)
-        self.assertIn("run aborted: operator abort", banner)
+        self.assertRegex(banner, r"run aborted: .*abort")
         self.assertEqual(self.browser.find_elements(By.ID, "cert-verdict"), [])
         self.assertEqual(self.browser.find_elements(By.ID, "cert-approval"), [])
         self.browser.execute_cdp_cmd("Emulation.setEmulatedMedia", {"media": "print"})

@@ -83,7 +83,8 @@ SqlQuery runs_query(const FleetRunQuery& q, const SqlDialect& dialect) {
   where.add("bench = @", q.bench);
   where.add("unit_serial = @", q.unit_serial);
   if (q.unit_serial_prefix) {
-    where.add(std::string("unit_serial LIKE @") + storage::kLikeEscapeClause,
+    // UPPER on both sides: PostgreSQL's LIKE minds case, SQLite's does not (for ASCII).
+    where.add(std::string("UPPER(unit_serial) LIKE UPPER(@)") + storage::kLikeEscapeClause,
               storage::like_prefix_pattern(*q.unit_serial_prefix));
   }
   where.add("procedure = @", q.procedure);

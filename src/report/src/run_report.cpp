@@ -84,8 +84,14 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
   if (const std::string pass = run.field("pass"); !pass.empty() && pass != "null") {
     facts.push_back({"pass", {pass, {}, pass == "false"}});
   }
+  // To the second: the stored times carry microseconds no reader of a report needs.
+  const auto to_second = [](std::string t) {
+    if (t.size() >= 19 && t[10] == 'T') t = t.substr(0, 10) + " " + t.substr(11, 8);
+    return t;
+  };
   facts.push_back({"started / finished (UTC)",
-                   {run.field("started_at", "\u2013") + " / " + run.field("finished_at", "\u2013"),
+                   {to_second(run.field("started_at", "\u2013")) + " / " +
+                        to_second(run.field("finished_at", "\u2013")),
                     {},
                     false}});
   facts.push_back({"software version", {run.field("software_version", "\u2013"), {}, false}});

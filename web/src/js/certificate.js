@@ -4,7 +4,7 @@
 // Figure names and units come from results.json's limit_checks (the verdict table's
 // declaration), figures are written to the digits their uncertainty supports (figures.js).
 import { el, num, table, verdictOf } from './dom.js';
-import { plusMinus, utcSeconds, limitName } from './figures.js';
+import { plusMinus, utcSeconds, limitName, whereText } from './figures.js';
 import { readRun } from './run_reads.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
@@ -32,12 +32,6 @@ function duration(run) {
   if (!Number.isFinite(a) || !Number.isFinite(b) || b < a) return null;
   const s = Math.round((b - a) / 1000);
   return s < 60 ? `${s} s` : `${Math.floor(s / 60)} min ${s % 60} s`;
-}
-
-// "static[1] reverse 60 N·m" → "reverse, 60 N·m": where in the run a figure was measured.
-function whereText(c) {
-  const w = String(c.what || '').replace(/^[a-z_.]+(\[\d+\])?\s*/i, '').trim();
-  return w ? w.replace(/ (-?[\d.]+ N·m)$/, ', $1') : 'whole run';
 }
 
 function decisionCell(c) {
@@ -74,7 +68,7 @@ function unitFacts(run, results) {
   return el('dl', { class: 'cert-facts', id: 'cert-unit' },
     fact('Unit serial', run.unit_serial || results.unit_serial),
     fact('Gear model', spec.model),
-    fact('Spec', spec.name ? `${spec.name}${spec.description ? ` – ${spec.description}` : ''}` : null),
+    fact('Spec', spec.name ? `${spec.name}${spec.description ? ` – ${spec.description.replace(/N\*m/g, 'N·m')}` : ''}` : null),
     fact('Gear ratio', results.gear ? `${num(results.gear.ratio)} : 1` : null));
 }
 

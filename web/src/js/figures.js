@@ -80,3 +80,10 @@ export function limitName(c) {
   const unit = c.display_unit || (c.unit || '').replace('N*m', 'N·m');
   return `${c.name || c.limit}${unit ? ` [${unit}]` : ''}`;
 }
+
+// Where in the run a limit check's figure was measured: "static[1] reverse 60 N·m" → "reverse,
+// 60 N·m"; a figure of the whole run (no array element) → "whole run".
+export function whereText(c) {
+  const w = String(c.what || '').replace(/^[a-z_.]+(\[\d+\])?\s*/i, '').trim();
+  return w ? w.replace(/ (-?[\d.]+ N·m)$/, ', $1') : 'whole run';
+}

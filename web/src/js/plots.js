@@ -75,6 +75,30 @@ export function stepTicks(u, splits, axis, space, step) {
   return splits.map((v) => (v == null ? '' : v.toFixed(Math.min(decimals, 12))));
 }
 
+const pad = (n) => String(n).padStart(2, '0');
+const isoDay = (d) => `${d.getUTCFullYear()}-${pad(d.getUTCMonth() + 1)}-${pad(d.getUTCDate())}`;
+const isoMinute = (d) => `${pad(d.getUTCHours())}:${pad(d.getUTCMinutes())}`;
+
+// Time ticks in UTC, ISO style (24 h): dates when the ticks are days apart, else hours and
+// minutes, with the date under the first tick of each day.
+export function timeTicks(u, splits, axis, space, step) {
+  let day = null;
+  return splits.map((s) => {
+    if (s == null) return '';
+    const d = new Date(s * 1000);
+    if (step >= 86400) return isoDay(d);
+    const today = isoDay(d);
+    // Ticks under a minute apart need their seconds, or neighbours read the same.
+    const time = step < 60 ? d.toISOString().slice(11, 19) : isoMinute(d);
+    const label = today !== day ? `${time}\n${today}` : time;
+    day = today;
+    return label;
+  });
+}
+
+// "2026-11-27 15:04:05" (UTC) for the legend of a time axis.
+export const timeValue = (u, v) => (v == null ? '–' : `${isoDay(new Date(v * 1000))} ${new Date(v * 1000).toISOString().slice(11, 19)}`);
+
 const AXIS_FONT = '12px system-ui, "DejaVu Sans", sans-serif';
 const LABEL_FONT = 'bold 12px system-ui, "DejaVu Sans", sans-serif';
 let measure = null;
@@ -101,10 +125,9 @@ export function makePlot(container, { xLabel, yLabel, series, data, logY, height
     height: height || 300,
     cursor: { drag: { x: true, y: false, setScale: true } },
     scales: { x: { time: !!xTime }, y: logY ? { distr: 3 } : {} },
-    ...(xTime ? { tzDate: (ts) => uPlot.tzDate(new Date(ts * 1e3), 'Etc/UTC') } : {}),
-    axes: [{ ...axis, label: xLabel, space: 70, size: 50, ...(xIncrs ? { incrs: xIncrs } : {}), ...(xTime ? {} : { values: stepTicks }) },
+    axes: [{ ...axis, label: xLabel, space: 70, size: xTime ? 62 : 50, ...(xIncrs ? { incrs: xIncrs } : {}), values: xTime ? timeTicks : stepTicks },
       { ...axis, label: yLabel, space: 28, size: axisSize, ...(logY ? {} : { values: yValues || stepTicks }) }],
-    series: [{ label: xLabel }, ...series.map((s, i) => ({
+    series: [{ label: xLabel, ...(xTime ? { value: timeValue } : {}) }, ...series.map((s, i) => ({
       label: s.label,
       stroke: s.color || palette[i % palette.length],
       width: s.width || 1.5,

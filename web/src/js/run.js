@@ -5,7 +5,7 @@ import { el, num, table, section, verdictOf, specName } from './dom.js';
 import { makePlot, joinSeries, palette } from './plots.js';
 import { twinDiagnosisSection } from './twin_diagnosis.js';
 import { awaitResults } from './run_progress.js';
-import { uncertain, plusMinus, figureText, utcSeconds, limitName } from './figures.js';
+import { uncertain, plusMinus, figureText, utcSeconds, limitName, whereText } from './figures.js';
 import { readRun } from './run_reads.js';
 import { exportButtons } from './run_exports.js';
 
@@ -52,7 +52,7 @@ function limitChecks(results) {
   return section('limit-checks', 'Limit checks',
     table([
       { label: 'Figure', value: (c) => el('span', { title: c.limit }, limitName(c)) },
-      { label: 'Where', value: (c) => c.what },
+      { label: 'Measured at', value: (c) => el('span', { title: c.path || c.what }, whereText(c)) },
       { label: 'Measured ± U (k = 2)', value: (c) => (c.uncertainty_stated !== false ? plusMinus(c.measured, c.expanded) : num(c.measured)), class: 'n' },
       { label: limitValueLabel(checks), value: (c) => num(c.value), class: 'n' },
       { label: 'Decision', value: (c) => decisionCell(c) },

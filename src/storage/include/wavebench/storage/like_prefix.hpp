@@ -1,7 +1,8 @@
 #pragma once
 // A prefix filter as an SQL LIKE pattern, for SQLite and PostgreSQL alike: the text's own
 // wildcards (% and _) and the escape character are escaped, so "0042_" finds "0042_A" and not
-// "0042-A". Use it with `column LIKE ? ESCAPE '\'`.
+// "0042-A". Use it with `column LIKE ? ESCAPE '\'` (SQLite's LIKE ignores ASCII case;
+// where PostgreSQL reads it too, compare UPPER() of both sides to get the same answer).
 
 #include <string>
 #include <string_view>
