@@ -148,7 +148,8 @@ class ManualPanel {
   async send(action, body) {
     try {
       const answer = await post(`/api/manual/${action}`, body);
-      this.error.textContent = '';
+      // A release's stop must not wipe the refusal of the jog it ends.
+      if (action !== 'stop') this.error.textContent = '';
       if (answer && answer.manual && this.status) this.status.manual = answer.manual;
       this.refresh();
       return true;
