@@ -16,8 +16,8 @@ constexpr double kPaceFrom = 0.05;
 constexpr double kPaceSpan = 0.04;
 // From then on the pace of the procedure's own fraction (positions, revolutions), with a
 // margin for steps slower than the average so far: on the simulated bench a dynamic record
-// slowed by 40 % once the previous run's post-run work ran beside it.
-constexpr double kPaceMargin = 1.6;
+// slowed by 40-60 % once the previous run's post-run work ran beside it.
+constexpr double kPaceMargin = 2.0;
 // What follows the last step (the procedure's own analysis, the bench's deactivation, the
 // log's close) is not in the pace: a static run's took 4-5 s on the simulated bench.
 constexpr double kTailS = 6.0;
