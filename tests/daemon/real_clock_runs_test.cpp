@@ -45,7 +45,11 @@ std::optional<FinishedRun> wait_for_end(const BenchThread& thread, const std::st
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::minutes(5);
   while (std::chrono::steady_clock::now() < deadline) {
     const auto s = thread.status();
-    if (!s.run && s.last_run && s.last_run->run_id == id) return s.last_run;
+    // Ended: recorded and its post-run work done (issue #21: that work runs in the background).
+    if (!s.run && s.last_run && s.last_run->run_id == id && s.post_runs.empty() &&
+        s.last_run->status != "processing") {
+      return s.last_run;
+    }
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   return std::nullopt;
