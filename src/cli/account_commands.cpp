@@ -1,6 +1,8 @@
 // `wavebench account hash` and `wavebench account add FILE NAME --role ROLE`: entries of the
 // daemon's accounts file (wavebenchd --accounts). The password comes from stdin (one line), so
 // it never shows in the process list or the shell's history.
+#include "account_commands.hpp"
+
 #include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
@@ -10,7 +12,6 @@
 #include <memory>
 #include <string>
 
-#include "account_commands.hpp"
 #include "wavebench/daemon/accounts.hpp"
 
 namespace wavebench::cli {

@@ -30,10 +30,10 @@ struct DaemonOptions {
   bool verbose = false;
   // Listening beyond loopback exposes the bench to the network: only when asked for.
   bool allow_remote = false;
-  std::vector<std::string> allowed_hosts;  // Host names accepted beside IP literals, localhost
-  std::filesystem::path web_root;          // empty: default_console_root()
-  std::filesystem::path results_config;    // --results; empty: the runs folder only
-  std::filesystem::path accounts_file;     // --accounts; empty: only the token logs in
+  std::vector<std::string> allowed_hosts;      // Host names accepted beside IP literals, localhost
+  std::filesystem::path web_root;              // empty: default_console_root()
+  std::filesystem::path results_config;        // --results; empty: the runs folder only
+  std::filesystem::path accounts_file;         // --accounts; empty: only the token logs in
   long long session_idle_timeout_s = 30 * 60;  // --session-idle-timeout
   long long session_max_age_s = 12 * 3600;     // --session-max-age
 };
