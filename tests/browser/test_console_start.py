@@ -225,6 +225,9 @@ class ConsoleStartTest(unittest.TestCase):
         self.wait_run_done()
         self.until(lambda: self.el('#last-run').is_displayed() and
                    'SN-SCAN-0004' in self.el('#verdict-of').text, 'verdict of the first run')
+        # Pending while the post-run work goes on in the background, then the verdict.
+        self.until(lambda: 'pending' not in self.el('#verdict').text, 'results of the first run',
+                   RUN_WAIT_S)
         self.assertIn('no verdict', self.el('#verdict').text)
         # The points stay on screen after the run (until the next one starts).
         self.assertTrue(self.el('#xy-panel').is_displayed())

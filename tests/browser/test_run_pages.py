@@ -84,7 +84,9 @@ class Daemon:
         while time.monotonic() < deadline:
             _, s = self.request("GET", "/api/status")
             last = s.get("last_run") or {}
-            if s.get("run") is None and last.get("id") and (run_id is None or last["id"] == run_id):
+            # Finished: recorded and its post-run work done (not `processing`).
+            if (s.get("run") is None and last.get("id") and (run_id is None or last["id"] == run_id)
+                    and last.get("status") not in ("running", "processing")):
                 return last["id"], last["status"]
             time.sleep(0.2)
         raise RuntimeError(f"{procedure} run did not finish")

@@ -134,6 +134,12 @@ class StopEverywhereTest(unittest.TestCase):
             time.sleep(0.05)
         self.assertEqual(s.get("state"), "ready", s)
         self.assertEqual(s.get("lifecycle"), "inactive")
+        # The aborted run's post-run work (its results) goes on in the background.
+        while time.monotonic() < deadline + 120:
+            s = self.daemon.status()
+            if (s.get("last_run") or {}).get("status") != "processing":
+                break
+            time.sleep(0.1)
         last = s.get("last_run") or {}
         if run_id:
             self.assertEqual(last.get("id"), run_id)

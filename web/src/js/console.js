@@ -241,6 +241,11 @@ async function showLastRun(last) {
       verdict.title = results.verdict === 'UNDECIDED'
         ? `a limit lies inside a figure's uncertainty interval; counts as ${results.undecided_counts_as || 'fail'} for acceptance`
         : '';
+    } else if (last.status === 'processing') {
+      // Recorded; the verdict comes with the results (post-run work in the background).
+      verdict.textContent = 'verdict pending: results being made';
+      verdict.className = 'verdict none';
+      verdict.title = 'the bench is free for the next unit; the verdict appears here when ready';
     } else if (last.status !== 'complete') {
       verdict.textContent = last.status.toUpperCase();
       verdict.className = 'verdict aborted';
