@@ -72,15 +72,17 @@ class Daemon:
         except urllib.error.HTTPError as e:
             return e.code, json.loads(e.read() or b"{}")
 
-    def run(self, procedure, options, spec=None):
-        request = {"procedure": procedure, "options": options}
+    def run(self, procedure, options, spec=None, **fields):
+        """Starts a run (`fields`: unit_serial, operator, ...) and waits until it is finished,
+        its post-run work included; returns its id and final status."""
+        request = {"procedure": procedure, "options": options, **fields}
         if spec:
             request["spec"] = spec
         status, body = self.request("POST", "/api/runs", request)
         if status not in (201, 202):
             raise RuntimeError(f"start {procedure}: {status} {body}")
         run_id = body.get("run_id")
-        deadline = time.monotonic() + 180
+        deadline = time.monotonic() + 400
         while time.monotonic() < deadline:
             _, s = self.request("GET", "/api/status")
             last = s.get("last_run") or {}
