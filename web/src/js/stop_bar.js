@@ -62,10 +62,14 @@ function banner(text) {
   }
 }
 
+// The manual panel holds the servo or moves the input (/api/status manual, servo in words).
+function manualEngaged(s) {
+  const m = s.manual || {};
+  return !!(m.servo_on || m.jog_rpm || m.goto_deg != null || m.brake_nm > 0);
+}
+
 function moving(s) {
-  // A run, or the manual panel's jog or servo (fields another part of the console adds).
-  return s.state === 'running' || s.run != null ||
-    (s.manual && s.manual.active) || (s.servo && s.servo.moving);
+  return s.state === 'running' || s.run != null || manualEngaged(s);
 }
 
 function describe(s) {
@@ -75,6 +79,9 @@ function describe(s) {
   }
   if (s.state === 'fault') return `fault: ${s.fault_reason || ''}`;
   if (s.state === 'stopping') return 'stopping: safe state, back to ready by itself';
+  if (manualEngaged(s) || (typeof s.servo === 'string' && s.servo !== 'servo off')) {
+    return `manual: ${s.servo || 'servo on'}${s.brake && s.brake !== 'brake off' ? ` · ${s.brake}` : ''}`;
+  }
   if (s.state === 'ready') return 'ready: nothing moves';
   return s.state || '?';
 }
