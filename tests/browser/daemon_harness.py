@@ -8,6 +8,9 @@ import subprocess
 import tempfile
 import threading
 
+from selenium import webdriver
+from selenium.webdriver.chrome.service import Service
+
 
 class Daemon:
     def __init__(self, wavebenchd, web_root):
@@ -50,3 +53,14 @@ class Daemon:
                 self.process.kill()
                 self.process.wait()
         self.dir.cleanup()
+
+
+def chromium(profile, height=1000):
+    """Debian's headless Chromium through chromedriver, 1400 px wide, profile in `profile`."""
+    options = webdriver.ChromeOptions()
+    options.binary_location = '/usr/bin/chromium'
+    for flag in ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic', '--no-first-run',
+                 '--disable-background-networking', '--disable-component-update', '--disable-sync',
+                 f'--window-size=1400,{height}', f'--user-data-dir={profile}']:
+        options.add_argument(flag)
+    return webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=options)

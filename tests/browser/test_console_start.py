@@ -18,15 +18,13 @@ import time
 import unittest
 import urllib.request
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.common.keys import Keys
 from selenium.webdriver.support.ui import Select, WebDriverWait
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from daemon_harness import Daemon  # noqa: E402
+from daemon_harness import Daemon, chromium  # noqa: E402
 
 ARGS = None
 WAIT_S = 60       # a guard against hanging, not a timing assertion
@@ -39,14 +37,7 @@ class ConsoleStartTest(unittest.TestCase):
     def setUpClass(cls):
         cls.daemon = Daemon(ARGS.wavebenchd, ARGS.web_root)
         cls.profile = tempfile.mkdtemp(prefix='wavebench-chromium-')
-        options = webdriver.ChromeOptions()
-        options.binary_location = '/usr/bin/chromium'
-        for flag in ['--headless', '--no-sandbox', '--disable-gpu', '--disable-quic',
-                     '--no-first-run', '--disable-background-networking',
-                     '--disable-component-update', '--disable-sync',
-                     '--window-size=1400,1500', f'--user-data-dir={cls.profile}']:
-            options.add_argument(flag)
-        cls.driver = webdriver.Chrome(service=Service('/usr/bin/chromedriver'), options=options)
+        cls.driver = chromium(cls.profile, height=1500)
         cls.driver.set_script_timeout(30)
         os.makedirs(ARGS.out, exist_ok=True)
 

@@ -21,11 +21,11 @@ import unittest
 import urllib.error
 import urllib.request
 
-from selenium import webdriver
-from selenium.webdriver.chrome.service import Service
 from selenium.webdriver.common.action_chains import ActionChains
 from selenium.webdriver.common.by import By
 from selenium.webdriver.support.ui import Select, WebDriverWait
+
+from daemon_harness import chromium
 
 WAVEBENCHD, WEB_ROOT, OUTPUT = (sys.argv[1:4] + [None] * 3)[:3]
 STATIC_OPTIONS = {"positions": 4, "loads_nm": [0], "window_s": 0.05}
@@ -104,16 +104,6 @@ class Daemon:
         self.process.stdout.close()
         self.log.close()
         shutil.rmtree(self.dir, ignore_errors=True)
-
-
-def chromium(profile):
-    options = webdriver.ChromeOptions()
-    options.binary_location = "/usr/bin/chromium"
-    for flag in ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-                 "--disable-background-networking", "--disable-component-update", "--disable-sync",
-                 "--window-size=1400,1000", f"--user-data-dir={profile}"]:
-        options.add_argument(flag)
-    return webdriver.Chrome(service=Service("/usr/bin/chromedriver"), options=options)
 
 
 class ConsolePageTest(unittest.TestCase):
