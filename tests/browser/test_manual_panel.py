@@ -27,6 +27,9 @@ from test_run_pages import OUTPUT, WAVEBENCHD, ConsolePageTest
 
 RELEASE_BOUND_S = 0.2
 STANDING_RPM = 0.5
+# The words for a 30 rpm jog: the speed is measured, and a loaded machine's simulated bench may
+# read 29.4 for a moment.
+MOVING_30 = {"moving 29 rpm", "moving 30 rpm", "moving 31 rpm"}
 
 
 def rpm(status):
@@ -60,7 +63,16 @@ class ManualPanelTest(ConsolePageTest):
             if value:
                 return value
             time.sleep(0.01)
-        self.fail(f"not within {timeout} s: {what}")
+        self.fail(f"not within {timeout} s: {what}\n{self.situation()}")
+
+    def situation(self):
+        """What the daemon and the page said when a wait failed: the words alone do not tell a
+        press that never reached the page from a jog the daemon stopped."""
+        s = self.status()
+        page = {id_: self.panel_text(id_) for id_ in ("manual-servo", "manual-note", "manual-error")}
+        jogging = self.browser.execute_script("return window.wavebenchManual.jogging")
+        return (f"daemon: lifecycle={s.get('lifecycle')} servo={s.get('servo')!r} "
+                f"input={rpm(s)} rpm manual={s.get('manual')}\npage: {page} jogging={jogging}")
 
     def wait_standing(self, start, bound):
         """Polls the status until the input stands; returns the seconds since `start`."""
@@ -106,7 +118,7 @@ class ManualPanelTest(ConsolePageTest):
         self.set_field("jog-speed", 30)
         forward = self.browser.find_element(By.ID, "jog-forward")
         self.press(forward).perform()
-        self.until("moving", lambda: self.status()["servo"] == "moving 30 rpm")
+        self.until("moving", lambda: self.status()["servo"] in MOVING_30)
         # Held for 1.5 s (five times the keep-alive timeout): it keeps turning at 30 rpm.
         speeds, words = [], set()
         end = time.monotonic() + 1.5
@@ -116,9 +128,9 @@ class ManualPanelTest(ConsolePageTest):
             words.add(s["servo"])
             time.sleep(0.05)
         self.assertTrue(all(v is not None and abs(v - 30) < 3 for v in speeds), speeds)
-        self.assertEqual(words, {"moving 30 rpm"})
+        self.assertTrue(words <= MOVING_30, words)
         self.until("page shows moving",
-                   lambda: self.panel_text("manual-servo") == "moving 30 rpm", 3)
+                   lambda: self.panel_text("manual-servo") in MOVING_30, 3)
         self.assertEqual(self.status()["lifecycle"], "active")
         self.shot_panel("manual-jogging")
 
@@ -173,7 +185,7 @@ class ManualPanelTest(ConsolePageTest):
         try:
             self.until("moving reverse", lambda: (rpm(self.status()) or 0) < -25, 3)
             # The measured speed, once the drive has settled after its ramp.
-            self.until("words", lambda: self.status()["servo"] == "moving -30 rpm", 3)
+            self.until("words", lambda: self.status()["servo"] in {w.replace("g ", "g -") for w in MOVING_30}, 3)
         finally:
             start = time.monotonic()
             ActionChains(self.browser).key_up(Keys.SPACE).perform()

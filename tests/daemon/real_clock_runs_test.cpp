@@ -172,7 +172,9 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   for (const auto& node : acquisition["nodes"]) {
     EXPECT_EQ(node["nmt_state"], "operational") << node.dump();
     ASSERT_TRUE(node["heartbeat_age_s"].is_number()) << node.dump();
-    EXPECT_LT(node["heartbeat_age_s"].get<double>(), 1.0) << node.dump();  // producer: 100 ms
+    // Producer 100 ms; the bound is the trip's own (a busier machine than that would have
+    // tripped the bench, which the lifecycle above already rules out), not a timing promise.
+    EXPECT_LT(node["heartbeat_age_s"].get<double>(), 5.0) << node.dump();
     EXPECT_GT(node["heartbeats"].get<int>(), 0) << node.dump();
   }
   const auto enable =
@@ -189,9 +191,14 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   const auto first = client.get("/api/live?limit=10").body;
   ASSERT_FALSE(first["samples"].empty()) << first.dump();
   const auto next = first["next"].get<std::uint64_t>();
-  std::this_thread::sleep_for(std::chrono::milliseconds(300));
-  const auto second = client.get("/api/live?since=" + std::to_string(next) + "&limit=1000").body;
-  ASSERT_GT(second["samples"].size(), 50U) << "fewer than 50 samples in 300 ms at 1 kHz";
+  // At 1 kHz, 50 samples take 50 ms; a loaded machine may take longer (counts, not timing).
+  nlohmann::json second;
+  const auto live_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  do {
+    std::this_thread::sleep_for(std::chrono::milliseconds(300));
+    second = client.get("/api/live?since=" + std::to_string(next) + "&limit=1000").body;
+  } while (second["samples"].size() <= 50U && std::chrono::steady_clock::now() < live_deadline);
+  ASSERT_GT(second["samples"].size(), 50U) << "fewer than 50 new samples in 20 s";
   // Newer samples: the live sequence number and the SYNC time both advance.
   auto last_seq = first["samples"].back()["seq"].get<std::uint64_t>();
   auto last_time = first["samples"].back()["receive_time_ns"].get<std::int64_t>();
