@@ -169,26 +169,29 @@ class Session : public std::enable_shared_from_this<Session> {
       auto event = self->events_->next();
       if (!event) return self->close();
       if (event->empty()) return self->next_event();
-      if (self->reader_stalled()) {
-        const auto dropped = ++g_stalled_readers_dropped;
-        spdlog::warn(
-            "live stream: the client read nothing for {} s; dropped, its slot freed "
-            "({} dropped since start)",
-            std::chrono::duration_cast<std::chrono::seconds>(kStalledReaderLimit).count(), dropped);
-        self->events_.reset();  // frees the slot now, not when the socket has drained
-        beast::error_code ignored;
-        self->stream_.socket().close(ignored);
-        return;
-      }
+      if (self->reader_stalled()) return self->drop_stalled_reader();
       self->event_ = std::move(*event);
       // A client that stops reading loses its slot instead of holding it for ever.
       self->stream_.expires_after(kStalledReaderLimit);
       net::async_write(self->stream_, net::buffer(self->event_),
                        [self](beast::error_code write_ec, std::size_t) {
+                         if (write_ec == beast::error::timeout) return self->drop_stalled_reader();
                          if (write_ec) return self->close();
                          self->next_event();
                        });
     });
+  }
+
+  // Its queue full or unacknowledged for kStalledReaderLimit: the client is not reading.
+  void drop_stalled_reader() {
+    const auto dropped = ++g_stalled_readers_dropped;
+    spdlog::warn(
+        "live stream: the client read nothing for {} s; dropped, its slot freed "
+        "({} dropped since start)",
+        std::chrono::duration_cast<std::chrono::seconds>(kStalledReaderLimit).count(), dropped);
+    events_.reset();  // frees the slot now, not when the socket has drained
+    beast::error_code ignored;
+    stream_.socket().close(ignored);
   }
 
   // Whether the client has left sent data unacknowledged (its receive window closed: it is not

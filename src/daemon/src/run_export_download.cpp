@@ -33,6 +33,13 @@ const char* content_type(exports::ExportFormat format) {
   return "application/octet-stream";
 }
 
+// What a download asks for, from its query. New query flags go here and in
+// export_request_from() (one place), then into the export's input.
+struct ExportRequest {
+  exports::ExportFormat format = exports::ExportFormat::kCsv;
+  std::string format_name;
+};
+
 bool made_as_text(exports::ExportFormat format) {
   return format == exports::ExportFormat::kCsv || format == exports::ExportFormat::kJson;
 }

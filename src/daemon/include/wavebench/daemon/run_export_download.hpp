@@ -13,7 +13,8 @@
 //    once in a scratch folder, after checking that the scratch disk has room for it, then
 //    unlinked while open and sent from the open file, so nothing is left behind even when the
 //    client goes away. Their log is bounded by kMaxExportDownloadLogBytes (the scratch bound).
-// A bad format is 400 naming the key, the value and what was expected. The caller limits how
+// A bad format is 400 naming the key, the value and what was expected. What the query asks for
+// is read in one place (ExportRequest in the .cpp): a new flag goes there. The caller limits how
 // many run at once and who may ask (daemon_api.cpp).
 
 #include <cstdint>
@@ -23,7 +24,6 @@
 
 #include "wavebench/daemon/daemon_api.hpp"
 #include "wavebench/daemon/http_target.hpp"
-#include "wavebench/exports/export_format.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
@@ -34,12 +34,6 @@ inline constexpr std::uintmax_t kScratchReserveBytes = std::uintmax_t{64} << 20;
 inline constexpr std::size_t kExportChunkRecords = 4096;  // csv/json: about 0.5 MiB of text
 inline constexpr std::size_t kExportFileChunkBytes = 256 << 10;
 
-// What a download asks for, from its query. New query flags go here and in
-// export_request_from() (one place), then into the export's input.
-struct ExportRequest {
-  exports::ExportFormat format = exports::ExportFormat::kCsv;
-  std::string format_name;
-};
 
 // `id` is a run id (checked by the caller) of `store`. `slot` is held until the last chunk is
 // sent (the caller's count of downloads in progress). `scratch_dir`: where mat/hdf5 files are
