@@ -34,7 +34,6 @@ inline constexpr std::uintmax_t kScratchReserveBytes = std::uintmax_t{64} << 20;
 inline constexpr std::size_t kExportChunkRecords = 4096;  // csv/json: about 0.5 MiB of text
 inline constexpr std::size_t kExportFileChunkBytes = 256 << 10;
 
-
 // `id` is a run id (checked by the caller) of `store`. `slot` is held until the last chunk is
 // sent (the caller's count of downloads in progress). `scratch_dir`: where mat/hdf5 files are
 // built (empty: the system's temporary folder).
