@@ -1,6 +1,7 @@
 """The systemd unit as the package installs it: packaging/write_unit.cmake, the step the .deb's
 install runs, writes it for a prefix; its settings read back as (key, value) pairs."""
 import os
+import re
 import subprocess
 
 
@@ -28,3 +29,11 @@ def settings(unit_path):
 
 def values(unit_path, key):
     return [v for k, v in settings(unit_path) if k == key]
+
+
+def exposure(unit_path):
+    """(overall exposure or None, the analysis) from `systemd-analyze security --offline=true`."""
+    result = subprocess.run(["systemd-analyze", "security", "--offline=true", "--no-pager",
+                             unit_path], capture_output=True, text=True)
+    m = re.search(r"Overall exposure level for wavebenchd\.service: (\d+\.\d+)", result.stdout)
+    return (float(m.group(1)) if m else None), result.stdout + result.stderr

@@ -38,19 +38,15 @@ def main():
     unit = packaged_unit.write_unit(source_dir, "/usr", os.path.join(work, "usr"))
     check("ExecStart=/usr/bin/wavebenchd " in open(unit).read(),
           "the packaged unit starts /usr/bin/wavebenchd")
-    result = subprocess.run([analyze, "security", "--offline=true", "--no-pager", unit],
-                            capture_output=True, text=True)
-    print(result.stdout)
-    m = re.search(r"Overall exposure level for wavebenchd\.service: (\d+\.\d+)", result.stdout)
-    check(m is not None, "systemd-analyze security --offline=true names an overall exposure"
-          f" (exit {result.returncode}, stderr: {result.stderr.strip()})")
-    score = float(m.group(1))
+    score, analysis = packaged_unit.exposure(unit)
+    print(analysis)
+    check(score is not None, "systemd-analyze security --offline=true names an overall exposure")
     check(score <= MAX_EXPOSURE, f"exposure {score} <= {MAX_EXPOSURE}")
 
     text = open(unit).read()
     comments = "\n".join(line for line in text.splitlines() if line.lstrip().startswith("#"))
     set_keys = {k for k, _ in packaged_unit.settings(unit)}
-    open_items = re.findall(r"^✗ (\S+?)=", result.stdout, re.M)
+    open_items = re.findall(r"^✗ (\S+?)=", analysis, re.M)
     unexplained = sorted({k for k in open_items if k not in set_keys and k + "=" not in comments})
     check(not unexplained,
           f"every open exposure ({len(open_items)}) is set or explained in a comment"
