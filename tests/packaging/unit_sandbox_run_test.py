@@ -1,12 +1,16 @@
 #!/usr/bin/python3
 """The built wavebenchd runs under the packaged unit's sandbox (issue #22, item 13), as far as it
-can be rebuilt without systemd as PID 1: the unit's SystemCallFilter= (expanded by
-systemd-analyze syscall-filter) with its SystemCallErrorNumber=, its RestrictAddressFamilies=,
-MemoryDenyWriteExecute= (the kernel's PR_SET_MDWE), NoNewPrivileges=, an empty capability
-bounding set, LimitRTPRIO=/LimitMEMLOCK= and UMask=, as an unprivileged user when run as root.
-A probe shows the sandbox bites (a packet socket and W+X memory refused); then the daemon, on the
-simulated bench with the real clock, gets SCHED_FIFO and locked memory from the limits alone,
-serves /api/status, records a static run with its results and stops cleanly on SIGTERM.
+can be rebuilt without systemd as PID 1, from the unit's own settings: bubblewrap gives the
+mounts (ProtectSystem=strict: all read-only but StateDirectory= and LogsDirectory=; PrivateTmp=;
+ProtectHome=), the kernel the rest: SystemCallFilter= (expanded by systemd-analyze
+syscall-filter) with SystemCallErrorNumber= and RestrictAddressFamilies= as a seccomp program,
+MemoryDenyWriteExecute= as PR_SET_MDWE, NoNewPrivileges=, no capabilities, LimitRTPRIO=,
+LimitMEMLOCK= and UMask=, as the unprivileged user nobody. The unit's ExecStart= runs, with its
+environment as an operator's wavebenchd.env would set it.
+A probe shows the sandbox bites (a packet socket, W+X memory and writes outside the state folder
+refused); then the daemon, on the simulated bench with the real clock, gets SCHED_FIFO and
+locked memory from the limits alone (where this machine can grant them), serves /api/status,
+records a static run with its results and stops cleanly on SIGTERM.
 
 Usage: unit_sandbox_run_test.py SOURCE_DIR WORK_DIR WAVEBENCHD
 """
@@ -19,8 +23,10 @@ import os
 import pwd
 import re
 import resource
+import shlex
 import shutil
 import signal
+import socket
 import subprocess
 import sys
 import time
@@ -93,39 +99,56 @@ def allowed_syscalls(unit):
     return allowed
 
 
-def sandbox(unit, user):
+def seccomp_program(unit, path):
+    """SystemCallFilter=, SystemCallErrorNumber= and RestrictAddressFamilies= as one seccomp
+    program (BPF) in path, for bwrap --seccomp."""
     allowed = allowed_syscalls(unit)
-    families = [getattr(__import__("socket"), f)
+    families = [getattr(socket, f)
                 for f in packaged_unit.values(unit, "RestrictAddressFamilies")[-1].split()]
     error = getattr(errno, packaged_unit.values(unit, "SystemCallErrorNumber")[-1])
-    check(packaged_unit.values(unit, "CapabilityBoundingSet") == [""], "no capability kept")
+    f = seccomp.SyscallFilter(defaction=seccomp.ERRNO(error))
+    for name in allowed - {"socket"}:
+        try:
+            f.add_rule(seccomp.ALLOW, name)
+        except (RuntimeError, ValueError):
+            pass  # a name this kernel or architecture does not have
+    for family in families:
+        f.add_rule(seccomp.ALLOW, "socket", seccomp.Arg(0, seccomp.EQ, family))
+    with open(path, "wb") as out:
+        f.export_bpf(out)
+    print(f"sandbox: {len(allowed)} system calls allowed, socket families {families}, "
+          f"others refused with {errno.errorcode[error]}")
+
+
+def grantable(limit, wanted):
+    """The unit's limit, or this machine's hard limit where it is lower and cannot be raised
+    (a container without CAP_SYS_RESOURCE)."""
+    soft, hard = resource.getrlimit(limit)
+    try:
+        resource.setrlimit(limit, (soft, wanted))
+        return wanted
+    except (ValueError, OSError):
+        return hard
+
+
+def process_settings(unit, user):
+    """The preexec function that applies the unit's limits, umask, capabilities, user and
+    MemoryDenyWriteExecute=, and whether the limits are the unit's."""
+    check(packaged_unit.values(unit, "CapabilityBoundingSet") == [""] and
+          packaged_unit.values(unit, "AmbientCapabilities") == [""], "no capability kept")
     check(packaged_unit.values(unit, "NoNewPrivileges") == ["yes"] and
           packaged_unit.values(unit, "MemoryDenyWriteExecute") == ["yes"],
           "NoNewPrivileges and MemoryDenyWriteExecute")
-    rtprio = int(packaged_unit.values(unit, "LimitRTPRIO")[-1])
-    memlock = packaged_unit.values(unit, "LimitMEMLOCK")[-1]
-    memlock = resource.RLIM_INFINITY if memlock == "infinity" else int(memlock)
+    unit_rtprio = int(packaged_unit.values(unit, "LimitRTPRIO")[-1])
+    unit_memlock = packaged_unit.values(unit, "LimitMEMLOCK")[-1]
+    unit_memlock = resource.RLIM_INFINITY if unit_memlock == "infinity" else int(unit_memlock)
     umask = int(packaged_unit.values(unit, "UMask")[-1], 8)
-    print(f"sandbox: {len(allowed)} system calls allowed, families {families}, "
-          f"errno {error}, RTPRIO {rtprio}")
-    libc = ctypes.CDLL(None, use_errno=True)
-
-    def grantable(limit, wanted):
-        """The unit's limit, or this machine's hard limit where it is lower and cannot be
-        raised (a container without CAP_SYS_RESOURCE)."""
-        hard = resource.getrlimit(limit)[1]
-        try:
-            resource.setrlimit(limit, (resource.getrlimit(limit)[0], wanted))
-            return wanted
-        except (ValueError, OSError):
-            return hard
-
-    rtprio = grantable(resource.RLIMIT_RTPRIO, rtprio)
-    memlock = grantable(resource.RLIMIT_MEMLOCK, memlock)
-    limits_as_unit = (rtprio, memlock) == (int(packaged_unit.values(unit, "LimitRTPRIO")[-1]),
-                                          resource.RLIM_INFINITY)
+    rtprio = grantable(resource.RLIMIT_RTPRIO, unit_rtprio)
+    memlock = grantable(resource.RLIMIT_MEMLOCK, unit_memlock)
+    limits_as_unit = (rtprio, memlock) == (unit_rtprio, unit_memlock)
     print(f"limits: RTPRIO {rtprio}, MEMLOCK {memlock}" +
           ("" if limits_as_unit else " (this machine cannot grant the unit's limits)"))
+    libc = ctypes.CDLL(None, use_errno=True)
 
     def enter():
         resource.setrlimit(resource.RLIMIT_RTPRIO, (rtprio, rtprio))
@@ -139,17 +162,64 @@ def sandbox(unit, user):
             os.setuid(user.pw_uid)
         if libc.prctl(PR_SET_MDWE, PR_MDWE_REFUSE_EXEC_GAIN, 0, 0, 0) != 0:
             raise OSError(ctypes.get_errno(), "PR_SET_MDWE")
-        f = seccomp.SyscallFilter(defaction=seccomp.ERRNO(error))
-        for name in allowed - {"socket"}:
-            try:
-                f.add_rule(seccomp.ALLOW, name)
-            except (RuntimeError, ValueError):
-                pass  # a name this kernel or architecture does not have
-        for family in families:
-            f.add_rule(seccomp.ALLOW, "socket", seccomp.Arg(0, seccomp.EQ, family))
-        f.load()  # with no_new_privs set, as libseccomp does by default
 
     return enter, limits_as_unit
+
+
+def mounts(unit, state, logs):
+    """bwrap's view of the file system for the unit's ProtectSystem=, PrivateTmp=,
+    ProtectHome=, StateDirectory= and LogsDirectory= (PrivateDevices=no: the host's /dev)."""
+    v = lambda key: packaged_unit.values(unit, key)  # noqa: E731
+    check(v("ProtectSystem") == ["strict"] and v("PrivateTmp") == ["yes"] and
+          v("ProtectHome") == ["yes"] and v("StateDirectory") == ["wavebench"] and
+          v("LogsDirectory") == ["wavebench"] and v("PrivateDevices") == ["no"],
+          "the unit's file system settings are the ones rebuilt here")
+    args = ["--unshare-user", "--ro-bind", "/", "/", "--dev-bind", "/dev", "/dev",
+            "--bind", "/proc", "/proc", "--tmpfs", "/tmp", "--tmpfs", "/var/tmp",
+            "--tmpfs", "/home", "--tmpfs", "/root"]
+    for parent, folder in [("/var/lib", state), ("/var/log", logs)]:
+        args += ["--tmpfs", parent, "--dir", parent + "/wavebench",
+                 "--bind", folder, parent + "/wavebench", "--remount-ro", parent]
+    return args
+
+
+def exec_start(unit, environment):
+    """ExecStart= as systemd expands it: ${VAR} within a word, $VAR split into words."""
+    words = []
+    for word in shlex.split(packaged_unit.values(unit, "ExecStart")[-1]):
+        m = re.fullmatch(r"\$(\w+)", word)
+        if m:
+            words += environment.get(m.group(1), "").split()
+        else:
+            words.append(re.sub(r"\$\{(\w+)\}", lambda n: environment.get(n.group(1), ""), word))
+    return words
+
+
+def unit_environment(unit, overrides):
+    environment = dict(v.split("=", 1) for v in packaged_unit.values(unit, "Environment"))
+    environment.update(overrides)
+    return environment
+
+
+def descendant(pid, name):
+    """The pid of a process called name below pid (bwrap runs the daemon as its child)."""
+    children = {}
+    for entry in os.listdir("/proc"):
+        if entry.isdigit():
+            try:
+                stat = open(f"/proc/{entry}/stat").read()
+            except OSError:
+                continue
+            comm = stat[stat.index("(") + 1:stat.rindex(")")]
+            ppid = int(stat[stat.rindex(")") + 2:].split()[1])
+            children.setdefault(ppid, []).append((int(entry), comm))
+    todo = [pid]
+    while todo:
+        for child, comm in children.get(todo.pop(), []):
+            if comm == name:
+                return child
+            todo.append(child)
+    return None
 
 
 PROBE = r"""
@@ -168,6 +238,12 @@ try:
     can = "CAN:open"
 except OSError as e:
     can = "CAN:" + errno.errorcode[e.errno]  # EAFNOSUPPORT: a kernel without SocketCAN
+for path in ["/usr/share/wavebench-probe", "/var/lib/wavebench-probe", "/etc/wavebench-probe"]:
+    try:
+        open(path, "w")
+    except OSError:
+        refused.append("write:" + path)
+open("/var/lib/wavebench/probe", "w").close()
 print(" ".join(refused), can)
 """
 
@@ -197,29 +273,53 @@ def main():
     source_dir, work, daemon = sys.argv[1], sys.argv[2], os.path.abspath(sys.argv[3])
     shutil.rmtree(work, ignore_errors=True)
     os.makedirs(work)
-    unit = packaged_unit.write_unit(source_dir, "/usr", os.path.join(work, "unit"))
+    check(shutil.which("bwrap") is not None, "bwrap is installed (Debian package bubblewrap)")
+    # The unit as the package writes it, with a prefix whose bin/ holds the built daemon.
+    prefix = os.path.join(work, "prefix")
+    os.makedirs(os.path.join(prefix, "bin"))
+    os.symlink(daemon, os.path.join(prefix, "bin", "wavebenchd"))
+    unit = packaged_unit.write_unit(source_dir, prefix, os.path.join(work, "unit"))
     user = pwd.getpwnam("nobody")
-    if os.getuid() == 0:
-        os.chown(work, user.pw_uid, user.pw_gid)
-    enter, limits_as_unit = sandbox(unit, user)
+    state, logs = os.path.join(work, "state"), os.path.join(work, "logs")
+    for folder in [work, state, logs]:
+        os.makedirs(folder, exist_ok=True)
+        if os.getuid() == 0:
+            os.chown(folder, user.pw_uid, user.pw_gid)
+    program = os.path.join(work, "seccomp.bpf")
+    seccomp_program(unit, program)
+    enter, limits_as_unit = process_settings(unit, user)
+    bwrap = ["bwrap"] + mounts(unit, state, logs)
 
-    probe = subprocess.run(["/usr/bin/python3", "-c", PROBE], preexec_fn=enter,
-                           capture_output=True, text=True)
-    words = probe.stdout.split()
+    def sandboxed(command, **kwargs):
+        with open(program, "rb") as bpf:
+            fd = bpf.fileno()
+            return subprocess.Popen(bwrap + ["--seccomp", str(fd)] + command, preexec_fn=enter,
+                                    pass_fds=(fd,), **kwargs)
+
+    probe = sandboxed(["/usr/bin/python3", "-c", PROBE], stdout=subprocess.PIPE,
+                      stderr=subprocess.PIPE, text=True)
+    out, err = probe.communicate(timeout=60)
+    words = out.split()
     check(probe.returncode == 0 and words[:2] == ["AF_PACKET", "W+X"] and
-          words[2] in ("CAN:open", "CAN:EAFNOSUPPORT"),
-          f"in the sandbox a packet socket and W+X memory are refused, a CAN socket is not "
-          f"({probe.stdout.strip()!r} {probe.stderr.strip()[-300:]})")
+          all(("write:" + p) in words for p in ["/usr/share/wavebench-probe",
+                                                "/var/lib/wavebench-probe",
+                                                "/etc/wavebench-probe"]) and
+          words[-1] in ("CAN:open", "CAN:EAFNOSUPPORT") and
+          os.path.exists(os.path.join(state, "probe")),
+          "in the sandbox a packet socket, W+X memory and writes outside /var/lib/wavebench"
+          f" are refused, a CAN socket is not ({out.strip()!r} {err.strip()[-300:]})")
+    os.remove(os.path.join(state, "probe"))
 
+    # What an operator's /etc/wavebench/wavebenchd.env would say: the bench and the address.
     config = real_clock_sim_config(source_dir, work)
-    runs, token = os.path.join(work, "runs"), os.path.join(work, "daemon.token")
+    command = exec_start(unit, unit_environment(unit, {"WAVEBENCH_BENCH_CONFIG": config,
+                                                       "WAVEBENCH_LISTEN": "127.0.0.1:0"}))
+    print("ExecStart: " + " ".join(command))
     log_path = os.path.join(work, "wavebenchd.err")
     log = open(log_path, "w+")
-    process = subprocess.Popen([daemon, "--config", config, "--listen", "127.0.0.1:0",
-                                "--runs", runs, "--token-file", token,
-                                "--log-dir", os.path.join(work, "log")],
-                               stdout=subprocess.PIPE, stderr=log, text=True, cwd=work,
-                               preexec_fn=enter)
+    process = sandboxed(command, stdout=subprocess.PIPE, stderr=log, text=True, cwd="/")
+    runs, token = os.path.join(state, "runs"), os.path.join(state, "daemon.token")
+    daemon_pid = None
     try:
         port = None
         deadline = time.time() + 60
@@ -233,6 +333,9 @@ def main():
         log.flush()
         check(port is not None,
               "wavebenchd starts in the sandbox:\n" + open(log_path).read()[-3000:])
+        daemon_pid = descendant(process.pid, "wavebenchd")
+        check(daemon_pid is not None and os.stat(f"/proc/{daemon_pid}").st_uid == user.pw_uid,
+              f"the daemon runs as {user.pw_name} (pid {daemon_pid})")
         status, body = get(port, "/api/status")
         check(status == 200, "GET /api/status")
         deadline = time.time() + 20
@@ -256,9 +359,10 @@ def main():
               f"({run.stdout.strip()[-500:]} {run.stderr.strip()[-500:]})")
         results = glob.glob(os.path.join(runs, "*", "results.json"))
         check(len(results) == 1 and json.load(open(results[0])).get("procedure") is not None,
-              f"its results.json is written under the runs folder ({results})")
+              f"its results.json is written under /var/lib/wavebench/runs ({results})")
+        check(os.stat(results[0]).st_mode & 0o777 == 0o640, "written with the unit's UMask")
     finally:
-        process.send_signal(signal.SIGTERM)
+        os.kill(daemon_pid or process.pid, signal.SIGTERM)
         try:
             process.wait(timeout=120)
         except subprocess.TimeoutExpired:
@@ -270,6 +374,7 @@ def main():
                (limits_as_unit or "bench thread: SCHED_FIFO refused" not in line)]
     check(process.returncode == 0, f"wavebenchd stops cleanly on SIGTERM ({process.returncode})")
     check(not refused, f"nothing the daemon asked for was refused ({refused[:5]})")
+    check(glob.glob(os.path.join(logs, "*")) != [], "its log is written under /var/log/wavebench")
     print("unit sandbox run: all checks passed")
 
 
