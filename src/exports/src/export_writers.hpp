@@ -31,6 +31,10 @@ PageWalk write_hdf5_file(const ExportInput& input, const std::filesystem::path& 
 PageWalk write_csv_file(const ExportInput& input, const std::filesystem::path& file);
 PageWalk write_json_file(const ExportInput& input, const std::filesystem::path& file);
 
+// The samples in `format` into `file` (a new file, not renamed anywhere).
+PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
+                            const std::filesystem::path& file);
+
 // A results key as a MATLAB identifier / HDF5 link name: [A-Za-z0-9_], a letter first, at most
 // 63 characters; empty when nothing of it is left.
 std::string field_name(const std::string& key);

@@ -202,6 +202,8 @@ PageWalk write_mat_file(const ExportInput& input, const std::filesystem::path& f
   write(mat.get(), char_var("run_json", input.run.dump(2, ' ', true)), "run_json");
   write(mat.get(), to_mat("results", results, 0), "results");
   write(mat.get(), char_var("run_id", input.run_id), "run_id");
+  // 1: the run was still running, the file holds only the samples logged so far.
+  write(mat.get(), double_var("partial", {input.partial ? 1.0 : 0.0}), "partial");
   if (Mat_Close(mat.release()) != 0) throw std::runtime_error("matio: cannot close the file");
   return walk;
 }
