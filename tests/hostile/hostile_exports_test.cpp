@@ -120,6 +120,13 @@ TEST(HostileExports, EveryFormatOnAFullDiskFailsCleanlyAndLeavesNothing) {
         } else {
           ASSERT_EQ(names.size(), 1u);
           EXPECT_EQ(names.front(), samples_file_name(format));
+          // Whole: as large as the same export without a limit (libmatio reports no failed
+          // write; a .mat cut short must not pass as written).
+          const auto reference = fresh_dir("reference");
+          ASSERT_EQ(export_in_child(format, samples, RLIM_INFINITY, reference), 0);
+          EXPECT_EQ(fs::file_size(dir / names.front()),
+                    fs::file_size(reference / samples_file_name(format)));
+          fs::remove_all(reference);
         }
         fs::remove_all(dir);
       }

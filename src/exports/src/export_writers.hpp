@@ -35,6 +35,10 @@ PageWalk write_json_file(const ExportInput& input, const std::filesystem::path& 
 PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
                             const std::filesystem::path& file);
 
+// `j` as indented text; bytes that are not UTF-8 (a hostile run record) become U+FFFD instead
+// of an exception mid-export. `ascii`: non-ASCII as \u escapes (MAT 5 char data is 8-bit).
+std::string json_text(const nlohmann::json& j, bool ascii = false);
+
 // A results key as a MATLAB identifier / HDF5 link name: [A-Za-z0-9_], a letter first, at most
 // 63 characters; empty when nothing of it is left.
 std::string field_name(const std::string& key);

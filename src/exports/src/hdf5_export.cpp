@@ -272,8 +272,8 @@ PageWalk write_contents(hid_t h5, const ExportInput& input) {
   });
 
   const json results = input.results.is_null() ? json::object() : input.results;
-  string_dataset(h5, "results_json", results.dump(2));
-  string_dataset(h5, "run_json", input.run.dump(2));
+  string_dataset(h5, "results_json", json_text(results));
+  string_dataset(h5, "run_json", json_text(input.run));
   Handle group(H5Gcreate2(h5, "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                "group results");
   results_into(group.get(), results, 0);

@@ -66,11 +66,11 @@ ExportSummary export_run(ExportInput input, ExportFormat format, const fs::path&
     PendingFile samples(summary.file);
     const auto walk = detail::write_samples_file(input, format, samples.temp());
     PendingFile run_file(dir / "run.json");
-    write_text(run_file.temp(), input.run.dump(2) + "\n");
+    write_text(run_file.temp(), detail::json_text(input.run) + "\n");
     std::unique_ptr<PendingFile> results_file;
     if (!input.results.is_null()) {
       results_file = std::make_unique<PendingFile>(dir / "results.json");
-      write_text(results_file->temp(), input.results.dump(2) + "\n");
+      write_text(results_file->temp(), detail::json_text(input.results) + "\n");
     }
     // Everything is written and synced before the first name changes.
     samples.commit();

@@ -36,6 +36,10 @@ PageWalk walk_pages(const ExportInput& input,
   return walk;
 }
 
+std::string json_text(const nlohmann::json& j, bool ascii) {
+  return j.dump(2, ' ', ascii, nlohmann::json::error_handler_t::replace);
+}
+
 std::string field_name(const std::string& key) {
   std::string out;
   for (const char c : key) {
