@@ -49,6 +49,18 @@ std::string hdf5_error_text() {
         return 0;
       },
       &text);
+  // A failed system call's description is long (time, buffer address, sizes): its reason is
+  // the part that matters to the user.
+  if (const auto at = text.find("error message = '"); at != std::string::npos) {
+    const auto begin = at + 17;
+    const auto end = text.find('\'', begin);
+    const auto errno_at = text.find("errno = ");
+    std::string why = text.substr(begin, end == std::string::npos ? end : end - begin);
+    if (errno_at != std::string::npos) {
+      why += " (errno " + text.substr(errno_at + 8, text.find(',', errno_at) - errno_at - 8) + ")";
+    }
+    return why;
+  }
   return text;
 }
 

@@ -64,7 +64,7 @@ ExportSummary export_run(ExportInput input, ExportFormat format, const fs::path&
     ExportSummary summary;
     summary.file = dir / samples_file_name(format);
     PendingFile samples(summary.file);
-    const auto walk = detail::write_samples_file(input, format, samples.temp());
+    const auto walk = detail::write_samples_file(input, format, samples.temp(), summary.file);
     PendingFile run_file(dir / "run.json");
     write_text(run_file.temp(), detail::json_text(input.run) + "\n");
     std::unique_ptr<PendingFile> results_file;

@@ -53,7 +53,8 @@ std::string field_name(const std::string& key) {
 }
 
 PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
-                            const std::filesystem::path& file) {
+                            const std::filesystem::path& file,
+                            const std::filesystem::path& target) {
   if (!input.pages) throw std::invalid_argument("export: no sample pages given");
   try {
     switch (format) {
@@ -68,7 +69,8 @@ PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
         return write_json_file(input, file);
     }
   } catch (const std::exception& e) {
-    throw std::runtime_error(file.string() + ": " + e.what());
+    // Named by the file the user asked for, not its temporary name.
+    throw std::runtime_error(target.string() + ": " + e.what());
   }
   throw std::logic_error("export format");
 }
@@ -80,7 +82,7 @@ ExportSummary export_samples(const ExportInput& input, ExportFormat format,
   ExportSummary summary;
   summary.file = dir / samples_file_name(format);
   PendingFile pending(summary.file);
-  const auto walk = detail::write_samples_file(input, format, pending.temp());
+  const auto walk = detail::write_samples_file(input, format, pending.temp(), summary.file);
   pending.commit();
   summary.partial = input.partial;
   summary.samples = walk.samples;
