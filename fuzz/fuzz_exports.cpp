@@ -74,10 +74,9 @@ struct FileSizeCap {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   Bytes in(data, size);
-  constexpr exports::ExportFormat kFormats[] = {exports::ExportFormat::kMat,
-                                                exports::ExportFormat::kHdf5,
-                                                exports::ExportFormat::kCsv,
-                                                exports::ExportFormat::kJson};
+  constexpr exports::ExportFormat kFormats[] = {
+      exports::ExportFormat::kMat, exports::ExportFormat::kHdf5, exports::ExportFormat::kCsv,
+      exports::ExportFormat::kJson};
   const auto format = kFormats[in.next() % 4];
   rlim_t cap = (rlim_t{in.next()} << 16) | (rlim_t{in.next()} << 8) | in.next();
   if (cap == 0xFFFFFF) cap = RLIM_INFINITY;

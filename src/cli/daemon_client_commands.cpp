@@ -128,11 +128,10 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
                 "marked partial (refused without it)");
   exp->callback([options, export_args, &status] {
     const auto& a = *export_args;
-    status.code =
-        a.runs.empty()
-            ? daemon::client_export(options->context(), a.run_id, a.out, a.format, a.partial)
-            : daemon::local_export(options->context(), a.runs, a.run_id, a.out, a.format,
-                                   a.partial);
+    status.code = a.runs.empty() ? daemon::client_export(options->context(), a.run_id, a.out,
+                                                         a.format, a.partial)
+                                 : daemon::local_export(options->context(), a.runs, a.run_id, a.out,
+                                                        a.format, a.partial);
   });
 }
 

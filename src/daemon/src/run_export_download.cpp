@@ -79,7 +79,8 @@ ApiResponse run_export_download(const storage::RunStore& store, const std::strin
     return api_error(400, "bad request", "partial: got '" + partial_text + "', expected 0 or 1");
   }
   const auto run_json = storage::to_json(*run);
-  if (const auto refusal = exports::running_run_refusal(run_json, partial_text == "1", "partial=1")) {
+  if (const auto refusal =
+          exports::running_run_refusal(run_json, partial_text == "1", "partial=1")) {
     return api_error(409, "conflict", "run '" + id + "': " + *refusal);
   }
   const auto paths = store.paths(id);
