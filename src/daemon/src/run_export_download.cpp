@@ -8,6 +8,8 @@
 #include <sstream>
 
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/exports/export_scratch.hpp"
+#include "wavebench/exports/run_export.hpp"
 #include "wavebench/exports/sample_export.hpp"
 
 namespace wavebench::daemon {
@@ -42,8 +44,7 @@ class ScratchFolder {
  public:
   ScratchFolder() {
     static std::atomic<unsigned> counter{0};
-    path_ = fs::temp_directory_path() /
-            ("wavebench-export-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    path_ = fs::temp_directory_path() / exports::export_scratch_name(counter++);
     fs::create_directories(path_);
   }
   ~ScratchFolder() {
@@ -71,6 +72,17 @@ ApiResponse run_export_download(const storage::RunStore& store, const std::strin
   }
   const auto run = store.find_run(id);
   if (!run) return api_error(404, "not found", "run '" + id + "' is not in the index");
+  // A run still running only with partial=1, and then the file says it is partial.
+  const auto partial_it = target.query.find("partial");
+  const std::string partial_text = partial_it == target.query.end() ? "0" : partial_it->second;
+  if (partial_text != "0" && partial_text != "1") {
+    return api_error(400, "bad request", "partial: got '" + partial_text + "', expected 0 or 1");
+  }
+  const auto run_json = storage::to_json(*run);
+  if (const auto refusal =
+          exports::running_run_refusal(run_json, partial_text == "1", "partial=1")) {
+    return api_error(409, "conflict", "run '" + id + "': " + *refusal);
+  }
   const auto paths = store.paths(id);
   std::error_code ec;
   const auto log_bytes = fs::file_size(paths.samples, ec);
@@ -84,7 +96,8 @@ ApiResponse run_export_download(const storage::RunStore& store, const std::strin
   }
   exports::ExportInput input;
   input.run_id = id;
-  input.run = storage::to_json(*run);
+  input.run = run_json;
+  input.partial = exports::run_still_running(run_json);
   input.results = json_file_or_null(paths.results);
   input.pages = exports::sample_log_pages(paths.samples);
   input.sample_json = [](const storage::SyncSample& s,
