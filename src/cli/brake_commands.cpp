@@ -31,6 +31,7 @@ struct BrakeOptions {
   bool torque = false;
   bool json = false;
   double duration_s = 0.0;
+  std::string secret;  // the simulated controller's unlock secret (brake_registers::unlock)
 };
 
 template <typename Body>
@@ -56,6 +57,7 @@ mb::BrakeClientConfig client_config(const BrakeOptions& o) {
   if (!o.modbus.empty()) cfg.link.endpoint = mb::parse_modbus_endpoint(o.modbus);
   if (o.unit >= 0) cfg.link.unit_id = o.unit;
   if (o.timeout_ms > 0) cfg.link.response_timeout = std::chrono::milliseconds(o.timeout_ms);
+  if (!o.secret.empty()) cfg.link.unlock_secret = simdevices::parse_unlock_secret(o.secret);
   return cfg;
 }
 
@@ -91,6 +93,8 @@ void add_link_options(CLI::App* cmd, BrakeOptions& o) {
   cmd->add_option("--config", o.config, "brake YAML config (default: built-in map)");
   cmd->add_option("--unit", o.unit, "Modbus unit id")->check(CLI::Range(0, 255));
   cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout")->check(CLI::Range(1, 60000));
+  cmd->add_option("--secret", o.secret,
+                  "unlock secret of a simulated controller started with one (hex)");
 }
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -109,7 +113,15 @@ void run_sim_brake(const BrakeOptions& o) {
     so.endpoint = mb::parse_modbus_endpoint(o.modbus.empty() ? "tcp:127.0.0.1:1502" : o.modbus);
   }
   if (o.unit >= 0) so.unit_id = o.unit;
+  if (o.secret == "random") {
+    so.unlock_secret = simdevices::random_unlock_secret();
+  } else if (!o.secret.empty()) {
+    so.unlock_secret = simdevices::parse_unlock_secret(o.secret);
+  }
   auto server = simdevices::start_brake_server(so);
+  if (so.unlock_secret && o.secret == "random") {
+    std::cout << "unlock secret " << simdevices::unlock_secret_text(*so.unlock_secret) << "\n";
+  }
   if (so.endpoint.transport == mb::Transport::tcp) {
     std::cout << "simulated brake controller on tcp:" << so.endpoint.host << ":" << server->port()
               << " unit " << so.unit_id << "\n";
@@ -202,6 +214,8 @@ void register_brake_commands(CLI::App& app, ExitStatus& status) {
                   "pseudo-terminal");
   sim->add_option("--unit", opts->unit, "Modbus unit id")->check(CLI::Range(0, 255));
   sim->add_option("--duration", opts->duration_s, "seconds to run (default: until SIGINT)");
+  sim->add_option("--secret", opts->secret,
+                  "take writes only after this unlock secret (hex, or 'random': printed)");
   sim->callback([opts, &status] { run(status, [&] { run_sim_brake(*opts); }); });
 }
 
