@@ -23,7 +23,8 @@ void parse_solver_section(YamlSection& s, model::SimulationOptions& solver) {
   }
   if (s.has("t_end")) {
     solver.t_end = s.positive_quantity("t_end", Dimension::kTime);
-    s.require_within("t_end", solver.t_end, 1e-6, kMaxTwinSimulatedS, "a simulated time [s]");
+    s.require_within("t_end", solver.t_end, kMinTwinSimulatedS, kMaxTwinSimulatedS,
+                     "a simulated time [s]");
   }
   solver.transient = s.non_negative_quantity_or("transient", Dimension::kTime, solver.transient);
   if (!(solver.transient < solver.t_end)) {
