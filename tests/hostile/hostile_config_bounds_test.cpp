@@ -33,8 +33,11 @@ Case safety(const std::string& key, const std::string& value) {
   return bench_line("  " + key + ":", "  " + key + ": \"" + value + "\"", "safety." + key, value);
 }
 
+// `value` as written in YAML; the message quotes it without the YAML quotes.
 Case can(const std::string& key, const std::string& value) {
-  return bench_line("  " + key + ":", "  " + key + ": " + value, "can." + key, value);
+  std::string shown = value;
+  if (shown.size() >= 2 && shown.front() == '"') shown = shown.substr(1, shown.size() - 2);
+  return bench_line("  " + key + ":", "  " + key + ": " + value, "can." + key, shown);
 }
 
 std::vector<Case> bench_cases() {
