@@ -6,12 +6,16 @@
 // and what was expected, nothing created.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <iostream>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "hostile_cli.hpp"
 #include "hostile_config_cases.hpp"
+#include "wavebench/config/config_error.hpp"
+#include "wavebench/config/twin_case.hpp"
 
 namespace wavebench::hostile {
 namespace {
@@ -156,6 +160,27 @@ TEST(HostileConfigBounds, TwinValuesThatOverflowAndTinyRunsAreRefusedNamingTheKe
   }
   std::cout << "[hostile] twin bounds: tried " << tried << ", refused " << refused << "\n";
   EXPECT_EQ(refused, tried);
+}
+
+// Keys finite one by one can still overflow together: the response is checked before anything
+// is written, and the refusal names the keys behind the first channel that overflowed.
+TEST(HostileConfigBounds, ANonFiniteTwinResponseIsRefusedNamingTheKeys) {
+  model::SampledResponse r;
+  r.t = {0, 0.5, 1};
+  r.twist = {0, 1e-3, std::numeric_limits<double>::infinity()};
+  r.gear_torque = {0, std::nan(""), 0};
+  try {
+    config::check_finite_response(r);
+    ADD_FAILURE() << "a non-finite response was accepted";
+  } catch (const config::ConfigError& e) {
+    const std::string m = e.what();
+    EXPECT_NE(m.find("stiffness"), std::string::npos) << m;
+    EXPECT_NE(m.find("t = 0.5 s"), std::string::npos) << m;  // the gear torque went first
+    EXPECT_NE(m.find("expected"), std::string::npos) << m;
+  }
+  r.gear_torque = {0, 1, 2};
+  r.twist = {0, 1e-3, 2e-3};
+  EXPECT_NO_THROW(config::check_finite_response(r));
 }
 
 }  // namespace
