@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "wavebench/modbus/brake_client.hpp"
 #include "wavebench/modbus/brake_config.hpp"
+#include "wavebench/modbus/modbus_error.hpp"
 #include "wavebench/simdevices/brake_server.hpp"
 #include "wavebench/simdevices/pty_pair.hpp"
 
@@ -45,6 +46,15 @@ void run(ExitStatus& status, Body&& body) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "wavebench brake: " << e.what() << "\n";
     status.code = 2;
+  } catch (const mb::ModbusError& e) {
+    std::cerr << "wavebench brake: " << e.what() << "\n";
+    if (e.kind() == mb::ModbusErrorKind::exception && e.exception_code() == 1) {
+      // What a locked simulated controller answers (brake_registers::unlock).
+      std::cerr << "wavebench brake: the controller refused the write: a simulated controller "
+                   "takes writes only after its unlock secret (--secret); the daemon's own "
+                   "brake takes none but the daemon's\n";
+    }
+    status.code = 1;
   } catch (const std::exception& e) {
     std::cerr << "wavebench brake: " << e.what() << "\n";
     status.code = 1;
@@ -113,13 +123,14 @@ void run_sim_brake(const BrakeOptions& o) {
     so.endpoint = mb::parse_modbus_endpoint(o.modbus.empty() ? "tcp:127.0.0.1:1502" : o.modbus);
   }
   if (o.unit >= 0) so.unit_id = o.unit;
-  if (o.secret == "random") {
+  // Locked by default: anyone on the machine can reach a loopback port.
+  if (o.secret.empty() || o.secret == "random") {
     so.unlock_secret = simdevices::random_unlock_secret();
-  } else if (!o.secret.empty()) {
+  } else if (o.secret != "none") {
     so.unlock_secret = simdevices::parse_unlock_secret(o.secret);
   }
   auto server = simdevices::start_brake_server(so);
-  if (so.unlock_secret && o.secret == "random") {
+  if (so.unlock_secret && (o.secret.empty() || o.secret == "random")) {
     std::cout << "unlock secret " << simdevices::unlock_secret_text(*so.unlock_secret) << "\n";
   }
   if (so.endpoint.transport == mb::Transport::tcp) {
@@ -215,7 +226,8 @@ void register_brake_commands(CLI::App& app, ExitStatus& status) {
   sim->add_option("--unit", opts->unit, "Modbus unit id")->check(CLI::Range(0, 255));
   sim->add_option("--duration", opts->duration_s, "seconds to run (default: until SIGINT)");
   sim->add_option("--secret", opts->secret,
-                  "take writes only after this unlock secret (hex, or 'random': printed)");
+                  "take writes only after this unlock secret: hex, 'random' (the default: "
+                  "printed) or 'none' (every write taken, as a real controller)");
   sim->callback([opts, &status] { run(status, [&] { run_sim_brake(*opts); }); });
 }
 
