@@ -111,6 +111,11 @@ std::vector<Case> twin_cases() {
       {"--t-end 1e-300", ok, "--t-end", "1e-300", "--t-end 1e-300"},
       {"--t-end 1e-7", ok, "--t-end", "1e-07", "--t-end 1e-7"},
       {"--t-end 1e5", ok, "--t-end", "100000", "--t-end 1e5"},
+      {"min_relative_amplitude 5",
+       twin_case("", "", "", "", "", ", spectrum: {min_relative_amplitude: 5}"),
+       "analysis.spectrum.min_relative_amplitude", "5"},
+      {"max_frequency 1e8 Hz", twin_case("", "", "", "", "", ", spectrum: {max_frequency: 1e8}"),
+       "analysis.spectrum.max_frequency", "1e8"},
       {"HTML case name", edit("name: hostile", "name: \"<svg onload=alert(1)>\""), "name",
        "<svg onload=alert(1)>"},
   };
