@@ -12,6 +12,7 @@ packages=(
   clang libclang-rt-14-dev
   can-utils mbpoll python3-can python3-pymodbus python3-serial-asyncio python3-scipy python3-numpy
   python3-jsonschema
+  systemd python3-seccomp bubblewrap
   octave python3-h5py
   chromium chromium-driver python3-selenium poppler-utils
 )

@@ -14,7 +14,7 @@ cmake -S "$root" -B "$build" -G Ninja \
   -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
   -DWAVEBENCH_WERROR=OFF >/dev/null
 targets=(fuzz_can_frames fuzz_sdo_client fuzz_eds fuzz_twin_config fuzz_bench_config
-  fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api)
+  fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api fuzz_exports)
 cmake --build "$build" -j "$jobs" --target "${targets[@]}"
 
 status=0
@@ -33,11 +33,18 @@ for t in "${targets[@]}"; do
     fuzz_procedure_options) cp -n "$root"/configs/procedures/*.yaml "$corpus/" ;;
     fuzz_brake_config) cp -n "$root"/configs/bench/*.yaml "$corpus/" ;;
     fuzz_http_api) bash "$root"/fuzz/http_seeds.sh "$corpus" ;;
+    fuzz_exports) # each format, a few sizes, a disk that fills up at once or never
+      for f in 0 1 2 3; do
+        printf "\\x0$f\\xff\\xff\\xff\\x01\\x00\\x01%8s\\x00{\"a\":1}" "" >"$corpus/seed-$f-full"
+        printf "\\x0$f\\x00\\x10\\x00\\x10\\x00\\x02%8s\\x01[1,2]" "" >"$corpus/seed-$f-cut"
+      done ;;
   esac
   echo "== $t for ${seconds}s"
   # -timeout: any single input taking over 10 s counts as a hang.
-  if ! "$build/fuzz/$t" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 \
-       -print_final_stats=1 "$corpus" 2>"$build/$t.log"; then
+  lsan="$root/fuzz/$t.lsan.supp"
+  [[ -f "$lsan" ]] || lsan=/dev/null
+  if ! LSAN_OPTIONS="suppressions=$lsan" "$build/fuzz/$t" -max_total_time="$seconds" -timeout=10 \
+       -rss_limit_mb=2048 -print_final_stats=1 "$corpus" 2>"$build/$t.log"; then
     echo "!! $t failed; see $build/$t.log"
     tail -n 40 "$build/$t.log"
     status=1

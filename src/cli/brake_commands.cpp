@@ -12,6 +12,7 @@
 #include "commands.hpp"
 #include "wavebench/modbus/brake_client.hpp"
 #include "wavebench/modbus/brake_config.hpp"
+#include "wavebench/modbus/modbus_error.hpp"
 #include "wavebench/simdevices/brake_server.hpp"
 #include "wavebench/simdevices/pty_pair.hpp"
 
@@ -31,6 +32,7 @@ struct BrakeOptions {
   bool torque = false;
   bool json = false;
   double duration_s = 0.0;
+  std::string secret;  // the simulated controller's unlock secret (brake_registers::unlock)
 };
 
 template <typename Body>
@@ -44,6 +46,15 @@ void run(ExitStatus& status, Body&& body) {
   } catch (const std::invalid_argument& e) {
     std::cerr << "wavebench brake: " << e.what() << "\n";
     status.code = 2;
+  } catch (const mb::ModbusError& e) {
+    std::cerr << "wavebench brake: " << e.what() << "\n";
+    if (e.kind() == mb::ModbusErrorKind::exception && e.exception_code() == 1) {
+      // What a locked simulated controller answers (brake_registers::unlock).
+      std::cerr << "wavebench brake: the controller refused the write: a simulated controller "
+                   "takes writes only after its unlock secret (--secret); the daemon's own "
+                   "brake takes none but the daemon's\n";
+    }
+    status.code = 1;
   } catch (const std::exception& e) {
     std::cerr << "wavebench brake: " << e.what() << "\n";
     status.code = 1;
@@ -56,6 +67,7 @@ mb::BrakeClientConfig client_config(const BrakeOptions& o) {
   if (!o.modbus.empty()) cfg.link.endpoint = mb::parse_modbus_endpoint(o.modbus);
   if (o.unit >= 0) cfg.link.unit_id = o.unit;
   if (o.timeout_ms > 0) cfg.link.response_timeout = std::chrono::milliseconds(o.timeout_ms);
+  if (!o.secret.empty()) cfg.link.unlock_secret = simdevices::parse_unlock_secret(o.secret);
   return cfg;
 }
 
@@ -91,6 +103,8 @@ void add_link_options(CLI::App* cmd, BrakeOptions& o) {
   cmd->add_option("--config", o.config, "brake YAML config (default: built-in map)");
   cmd->add_option("--unit", o.unit, "Modbus unit id")->check(CLI::Range(0, 255));
   cmd->add_option("--timeout-ms", o.timeout_ms, "response timeout")->check(CLI::Range(1, 60000));
+  cmd->add_option("--secret", o.secret,
+                  "unlock secret of a simulated controller started with one (hex)");
 }
 
 volatile std::sig_atomic_t g_stop = 0;
@@ -109,7 +123,16 @@ void run_sim_brake(const BrakeOptions& o) {
     so.endpoint = mb::parse_modbus_endpoint(o.modbus.empty() ? "tcp:127.0.0.1:1502" : o.modbus);
   }
   if (o.unit >= 0) so.unit_id = o.unit;
+  // Locked by default: anyone on the machine can reach a loopback port.
+  if (o.secret.empty() || o.secret == "random") {
+    so.unlock_secret = simdevices::random_unlock_secret();
+  } else if (o.secret != "none") {
+    so.unlock_secret = simdevices::parse_unlock_secret(o.secret);
+  }
   auto server = simdevices::start_brake_server(so);
+  if (so.unlock_secret && (o.secret.empty() || o.secret == "random")) {
+    std::cout << "unlock secret " << simdevices::unlock_secret_text(*so.unlock_secret) << "\n";
+  }
   if (so.endpoint.transport == mb::Transport::tcp) {
     std::cout << "simulated brake controller on tcp:" << so.endpoint.host << ":" << server->port()
               << " unit " << so.unit_id << "\n";
@@ -202,6 +225,9 @@ void register_brake_commands(CLI::App& app, ExitStatus& status) {
                   "pseudo-terminal");
   sim->add_option("--unit", opts->unit, "Modbus unit id")->check(CLI::Range(0, 255));
   sim->add_option("--duration", opts->duration_s, "seconds to run (default: until SIGINT)");
+  sim->add_option("--secret", opts->secret,
+                  "take writes only after this unlock secret: hex, 'random' (the default: "
+                  "printed) or 'none' (every write taken, as a real controller)");
   sim->callback([opts, &status] { run(status, [&] { run_sim_brake(*opts); }); });
 }
 

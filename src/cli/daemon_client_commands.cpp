@@ -110,6 +110,7 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
 
   struct ExportArgs {
     std::string run_id, out, format = "csv", runs;
+    bool partial = false;
   };
   auto export_args = std::make_shared<ExportArgs>();
   auto* exp = daemon_subcommand(app, "export", "copy a run's samples and results", options);
@@ -122,11 +123,15 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
   exp->add_option("--runs", export_args->runs,
                   "read the run from this run store folder instead of the daemon (no daemon "
                   "needed)");
+  exp->add_flag("--partial", export_args->partial,
+                "export a run that is still running: only the samples logged so far, every file "
+                "marked partial (refused without it)");
   exp->callback([options, export_args, &status] {
     const auto& a = *export_args;
-    status.code = a.runs.empty()
-                      ? daemon::client_export(options->context(), a.run_id, a.out, a.format)
-                      : daemon::local_export(options->context(), a.runs, a.run_id, a.out, a.format);
+    status.code = a.runs.empty() ? daemon::client_export(options->context(), a.run_id, a.out,
+                                                         a.format, a.partial)
+                                 : daemon::local_export(options->context(), a.runs, a.run_id, a.out,
+                                                        a.format, a.partial);
   });
 }
 

@@ -242,10 +242,11 @@ int run_sim(const SimArgs& args) {
     return 2;
   }
   if (args.t_end) {
-    if (!(std::isfinite(*args.t_end) && *args.t_end > 0 &&
+    if (!(std::isfinite(*args.t_end) && *args.t_end >= config::kMinTwinSimulatedS &&
           *args.t_end <= config::kMaxTwinSimulatedS)) {
       std::cerr << "wavebench sim: --t-end: got '" << *args.t_end
-                << "', expected a time in seconds in (0, " << config::kMaxTwinSimulatedS << "]\n";
+                << "', expected a time in seconds in [" << config::kMinTwinSimulatedS << ", "
+                << config::kMaxTwinSimulatedS << "]\n";
       return 2;
     }
     twin.solver.t_end = *args.t_end;
@@ -294,6 +295,12 @@ int run_sim(const SimArgs& args) {
     };
     const model::SimulationResult result = model::simulate(twin.gear, twin.solver);
     progress.finish();
+    try {
+      config::check_finite_response(result.response);
+    } catch (const config::ConfigError& e) {
+      std::cerr << "wavebench sim: " << e.with_source(args.config).what() << "\n";
+      return 2;
+    }
     // A sweep in the analysis simulates again, silently, but still stops on a signal.
     twin.solver.progress = [](double) { StopSignals::throw_if_requested(); };
     if (!args.quiet) std::cerr << "analysing ...\n";

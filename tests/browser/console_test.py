@@ -117,7 +117,7 @@ class ConsoleTest(unittest.TestCase):
         self.until(lambda: self.driver.current_url.rstrip('/') == self.daemon.url,
                    'back on the console')
         self.open_console()
-        self.until(lambda: self.el('#logout').is_displayed(), 'logged in')
+        self.until(lambda: self.el('#stop-bar-logout').is_displayed(), 'logged in')
 
     def reset_if_faulted(self):
         if self.status()['lifecycle'] == 'fault':
@@ -128,7 +128,7 @@ class ConsoleTest(unittest.TestCase):
     # -- tests, in order (one browser, one daemon) -------------------------------------------
     def test_1_without_a_session_start_is_refused(self):
         self.open_console()
-        self.assertTrue(self.el('#login-link').is_displayed())
+        self.assertTrue(self.el('#stop-bar-login').is_displayed())
         self.assertFalse(self.el('#start').is_enabled())
         # The stop bar's STOP works without a session (issue #21).
         self.assertTrue(self.el('#stop').is_enabled())

@@ -10,31 +10,10 @@
 #include <vector>
 
 #include "hostile_cli.hpp"
+#include "hostile_config_cases.hpp"
 
 namespace wavebench::hostile {
 namespace {
-
-const fs::path kSource = WAVEBENCH_SOURCE_DIR;
-
-// A small valid case; each extreme case replaces one of the {placeholders}.
-std::string twin_case(const std::string& gear, const std::string& te, const std::string& input,
-                      const std::string& stiffness, const std::string& solver,
-                      const std::string& analysis) {
-  return "name: hostile\n"
-         "gear: {z_flex: 200, z_circ: 202, inertia_input: \"3e-4 kg*m^2\", "
-         "inertia_output: \"0.05 kg*m^2\"" +
-         gear + "}\n" +
-         "te:\n  terms:\n    - {source: a, family: custom, order_input: 0, order_output: 1, "
-         "amplitude: \"1 arcmin\"" +
-         te + "}\n" + "stiffness: {form: linear_periodic, k0: \"3e4 N*m/rad\"" + stiffness + "}\n" +
-         "input: {type: kinematic, speed: \"100 rpm\"" + input + "}\n" +
-         // A case's own t_end or sample_rate replaces the short defaults (a second one
-         // would be a duplicate key, refused for that reason instead).
-         "solver: {locate_events: true" +
-         (solver.find("t_end") == std::string::npos ? ", t_end: 0.2" : "") +
-         (solver.find("sample_rate") == std::string::npos ? ", sample_rate: \"1 kHz\"" : "") +
-         solver + "}\n" + "analysis: {order_spectrum: false" + analysis + "}\n";
-}
 
 struct Extreme {
   std::string label;
@@ -153,31 +132,6 @@ TEST(HostileConfigValues, TheOutputBudgetMessageGivesTheNumbers) {
             std::string::npos)
       << r.output;
   EXPECT_NE(r.output.find("at 100 kHz output"), std::string::npos) << r.output;
-}
-
-// A bench config with the twin and true-gear cases and the EDS files named by absolute path, so
-// that it can be written outside configs/.
-std::string bench_config() {
-  std::string text = read_file(kSource / "configs/benches/sim.yaml");
-  const auto put = [&](const std::string& from, const std::string& to) {
-    const auto at = text.find(from);
-    if (at != std::string::npos) text.replace(at, from.size(), to);
-  };
-  put("../twin/bench-unit-seed004.yaml",
-      (kSource / "configs/twin/bench-unit-seed004.yaml").string());
-  put("case: sim-true-gear.yaml",
-      "case: " + (kSource / "configs/benches/sim-true-gear.yaml").string());
-  for (const char* eds : {"servo_drive.eds", "output_encoder.eds", "torque_sensor.eds"})
-    put(std::string("../eds/") + eds, (kSource / "configs/eds" / eds).string());
-  return text;
-}
-
-std::string with_line(std::string text, const std::string& key_line, const std::string& line) {
-  const auto at = text.find(key_line);
-  if (at == std::string::npos) return text;
-  const auto end = text.find('\n', at);
-  text.replace(at, end - at, line);
-  return text;
 }
 
 TEST(HostileConfigValues, BenchConfigRefusesDisarmedLimitsAndBadText) {

@@ -17,6 +17,9 @@ import subprocess
 import sys
 import time
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import packaged_unit  # noqa: E402
+
 
 def fail(message):
     print("FAIL: " + message, file=sys.stderr)
@@ -75,12 +78,19 @@ def main():
     check(re.search(r"^User=wavebench$", unit, re.M) is not None and
           re.search(r"^StateDirectory=wavebench$", unit, re.M) is not None,
           "the unit runs as its own user with its state under /var/lib/wavebench")
+    score, analysis = packaged_unit.exposure(
+        os.path.join(root, "usr/lib/systemd/system/wavebenchd.service"))
+    check(score is not None and score <= 4.0,
+          f"the packaged unit's exposure in systemd-analyze security is {score} <= 4.0"
+          + ("" if score is not None else "\n" + analysis))
     scripts = os.path.join(work, "control")
     subprocess.run(["dpkg-deb", "-e", deb, scripts], check=True)
     for script in ["postinst", "prerm", "postrm"]:
         subprocess.run(["sh", "-n", os.path.join(scripts, script)], check=True)
     check("adduser --system" in open(os.path.join(scripts, "postinst")).read(),
           "postinst creates the system user")
+    check("deluser --quiet --system wavebench" in open(os.path.join(scripts, "postrm")).read(),
+          "postrm purge deletes it")
 
     daemon = os.path.join(root, "usr/bin/wavebenchd")
     version = subprocess.run([daemon, "--version"], check=True, capture_output=True,

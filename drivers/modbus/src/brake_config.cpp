@@ -141,7 +141,8 @@ BrakeClientConfig read_brake_config(YamlSection& s) {
   if (auto t = s.optional_section("timeouts")) {
     set_ms_if(t->optional_integer("response_ms", 1, 60000), cfg.link.response_timeout);
     set_ms_if(t->optional_integer("byte_ms", 1, 60000), cfg.link.byte_timeout);
-    set_ms_if(t->optional_integer("link_loss_ms", 1, 600000), cfg.link.link_loss_timeout);
+    // A safety timeout: a link silent for a minute is lost (safety.modbus_link_timeout agrees).
+    set_ms_if(t->optional_integer("link_loss_ms", 1, 60000), cfg.link.link_loss_timeout);
     t->finish();
   }
   if (auto r = s.optional_section("reconnect")) {

@@ -70,6 +70,23 @@ void ModbusLink::connect() {
   connections_.fetch_add(1, std::memory_order_acq_rel);
   last_tid_ = 0;
   flush_before_next_ = ep.transport == Transport::rtu;
+  if (config_.unlock_secret) unlock(*config_.unlock_secret);
+}
+
+// A controller that takes writes only after a shared secret (the simulated one, see
+// brake_registers::unlock) is unlocked on every new connection: a reconnect is a new one.
+void ModbusLink::unlock(std::uint64_t secret) {
+  std::vector<uint16_t> words(4);
+  for (int i = 3; i >= 0; --i, secret >>= 16)
+    words[static_cast<size_t>(i)] = static_cast<uint16_t>(secret & 0xFFFF);
+  try {
+    write_registers(config_.unlock_address, words);
+  } catch (const ModbusError& e) {
+    close();
+    throw ModbusError(ModbusErrorKind::not_connected,
+                      "modbus " + to_string(config_.endpoint) +
+                          ": the controller did not take the unlock secret: " + e.what());
+  }
 }
 
 void ModbusLink::close() noexcept {

@@ -23,15 +23,28 @@ struct Unit {
   double offset = 0.0;
 };
 
+// The magnitude no config value of a dimension exceeds (SI, and as the refusal writes it):
+// beyond it a value is a typo or an attack, and products of such values overflow (a stiffness
+// of 1e308 N*m/rad made the twin's torques infinite). Keys with a meaning bound themselves
+// tighter where they are declared.
+struct Ceiling {
+  double si;
+  const char* as_written;
+};
+
 struct DimensionInfo {
   Dimension dimension;
   const char* label;
   std::vector<Unit> units;
+  Ceiling ceiling;
 };
 
 const std::vector<DimensionInfo>& table() {
   static const std::vector<DimensionInfo> dims = {
-      {Dimension::kDimensionless, "a dimensionless number", {{"", 1}, {"1", 1}, {"%", 0.01}}},
+      {Dimension::kDimensionless,
+       "a dimensionless number",
+       {{"", 1}, {"1", 1}, {"%", 0.01}},
+       {1e12, "1e12"}},  // any ratio, scale or count of sense
       {Dimension::kAngle,
        "an angle",
        {{"rad", 1},
@@ -40,7 +53,8 @@ const std::vector<DimensionInfo>& table() {
         {"deg", kDeg},
         {"arcmin", kArcmin},
         {"arcsec", kArcsec},
-        {"rev", kRev}}},
+        {"rev", kRev}},
+       {1e9, "1e9 rad"}},  // about 1.6e8 turns: more than any trace or run turns
       {Dimension::kAngularSpeed,
        "an angular speed",
        {{"rad/s", 1},
@@ -48,11 +62,16 @@ const std::vector<DimensionInfo>& table() {
         {"rpm", kRev / 60.0},
         {"rev/min", kRev / 60.0},
         {"rev/s", kRev},
-        {"Hz", kRev}}},
-      {Dimension::kLength, "a length", {{"m", 1}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}}},
+        {"Hz", kRev}},
+       {1e5, "1e5 rad/s"}},  // about 955 000 rpm: no gear input turns faster
+      {Dimension::kLength,
+       "a length",
+       {{"m", 1}, {"mm", 1e-3}, {"um", 1e-6}, {"nm", 1e-9}},
+       {1e3, "1 km"}},  // no bench part is larger
       {Dimension::kTorque,
        "a torque",
-       {{"N*m", 1}, {"Nm", 1}, {"mN*m", 1e-3}, {"mNm", 1e-3}, {"kN*m", 1e3}, {"kNm", 1e3}}},
+       {{"N*m", 1}, {"Nm", 1}, {"mN*m", 1e-3}, {"mNm", 1e-3}, {"kN*m", 1e3}, {"kNm", 1e3}},
+       {1e7, "1e7 N*m"}},  // ten times the rating of the largest strain-wave gears
       {Dimension::kStiffness,
        "a torsional stiffness",
        {{"N*m/rad", 1},
@@ -62,35 +81,72 @@ const std::vector<DimensionInfo>& table() {
         {"N*m/arcmin", 1 / kArcmin},
         {"Nm/arcmin", 1 / kArcmin},
         {"N*m/arcsec", 1 / kArcsec},
-        {"Nm/arcsec", 1 / kArcsec}}},
+        {"Nm/arcsec", 1 / kArcsec}},
+       {1e10, "1e10 N*m/rad"}},  // far stiffer than any gear; stiffer overflows the twin
       {Dimension::kQuadraticStiffness,
        "a quadratic stiffness coefficient",
-       {{"N*m/rad^2", 1}, {"N*m/arcsec^2", 1 / (kArcsec * kArcsec)}}},
+       {{"N*m/rad^2", 1}, {"N*m/arcsec^2", 1 / (kArcsec * kArcsec)}},
+       {1e16, "1e16 N*m/rad^2"}},  // k2 at a 1e-3 rad twist below 1e10 N*m/rad
       {Dimension::kCubicStiffness,
        "a cubic stiffness coefficient",
-       {{"N*m/rad^3", 1}, {"N*m/arcsec^3", 1 / (kArcsec * kArcsec * kArcsec)}}},
+       {{"N*m/rad^3", 1}, {"N*m/arcsec^3", 1 / (kArcsec * kArcsec * kArcsec)}},
+       {1e22, "1e22 N*m/rad^3"}},  // k3 at a 1e-3 rad twist below 1e10 N*m/rad
       {Dimension::kInertia,
        "a moment of inertia",
-       {{"kg*m^2", 1}, {"kg*cm^2", 1e-4}, {"g*cm^2", 1e-7}, {"kg*mm^2", 1e-6}}},
+       {{"kg*m^2", 1}, {"kg*cm^2", 1e-4}, {"g*cm^2", 1e-7}, {"kg*mm^2", 1e-6}},
+       {1e6, "1e6 kg*m^2"}},  // a flywheel of tonnes
       {Dimension::kDamping,
        "a rotational damping coefficient",
-       {{"N*m*s/rad", 1}, {"Nms/rad", 1}, {"N*m*s", 1}, {"mN*m*s/rad", 1e-3}}},
-      {Dimension::kTime, "a time", {{"s", 1}, {"ms", 1e-3}, {"us", 1e-6}, {"min", 60}}},
-      {Dimension::kFrequency, "a frequency", {{"Hz", 1}, {"kHz", 1e3}, {"MHz", 1e6}}},
-      {Dimension::kRate, "a rate", {{"1/s", 1}, {"/s", 1}}},
-      {Dimension::kCurrent, "a current", {{"A", 1}, {"mA", 1e-3}}},
-      {Dimension::kVoltage, "a voltage", {{"V", 1}, {"mV", 1e-3}, {"kV", 1e3}}},
+       {{"N*m*s/rad", 1}, {"Nms/rad", 1}, {"N*m*s", 1}, {"mN*m*s/rad", 1e-3}},
+       {1e9, "1e9 N*m*s/rad"}},  // beyond any bearing or brake
+      {Dimension::kTime,
+       "a time",
+       {{"s", 1}, {"ms", 1e-3}, {"us", 1e-6}, {"min", 60}},
+       {1e7, "1e7 s"}},  // about 4 months: longer than any run, timeout or lag
+      {Dimension::kFrequency,
+       "a frequency",
+       {{"Hz", 1}, {"kHz", 1e3}, {"MHz", 1e6}},
+       {1e9, "1 GHz"}},  // beyond any sample rate or excitation here
+      {Dimension::kRate,
+       "a rate",
+       {{"1/s", 1}, {"/s", 1}},
+       {1e9, "1e9 1/s"}},  // beyond any loop gain or decay rate
+      {Dimension::kCurrent,
+       "a current",
+       {{"A", 1}, {"mA", 1e-3}},
+       {1e4, "10 kA"}},  // beyond any coil or motor of a bench
+      {Dimension::kVoltage,
+       "a voltage",
+       {{"V", 1}, {"mV", 1e-3}, {"kV", 1e3}},
+       {1e5, "100 kV"}},  // beyond any supply of a bench
       {Dimension::kResistance,
        "a resistance",
-       {{"Ohm", 1}, {"ohm", 1}, {"mOhm", 1e-3}, {"kOhm", 1e3}}},
-      {Dimension::kInductance, "an inductance", {{"H", 1}, {"mH", 1e-3}, {"uH", 1e-6}}},
-      {Dimension::kTorqueConstant, "a torque constant", {{"N*m/A", 1}, {"Nm/A", 1}}},
+       {{"Ohm", 1}, {"ohm", 1}, {"mOhm", 1e-3}, {"kOhm", 1e3}},
+       {1e9, "1 GOhm"}},  // an open circuit
+      {Dimension::kInductance,
+       "an inductance",
+       {{"H", 1}, {"mH", 1e-3}, {"uH", 1e-6}},
+       {1e3, "1 kH"}},  // beyond any winding
+      {Dimension::kTorqueConstant,
+       "a torque constant",
+       {{"N*m/A", 1}, {"Nm/A", 1}},
+       {1e4, "1e4 N*m/A"}},  // beyond any motor
       {Dimension::kBackEmfConstant,
        "a back-EMF constant",
-       {{"V*s/rad", 1}, {"V/(rad/s)", 1}, {"V/krpm", 60.0 / (kRev * 1000.0)}}},
-      {Dimension::kTemperature, "a temperature", {{"degC", 1}, {"K", 1, -273.15}}},
-      {Dimension::kHeatCapacity, "a heat capacity", {{"J/K", 1}}},
-      {Dimension::kThermalResistance, "a thermal resistance", {{"K/W", 1}}},
+       {{"V*s/rad", 1}, {"V/(rad/s)", 1}, {"V/krpm", 60.0 / (kRev * 1000.0)}},
+       {1e4, "1e4 V*s/rad"}},  // beyond any motor
+      {Dimension::kTemperature,
+       "a temperature",
+       {{"degC", 1}, {"K", 1, -273.15}},
+       {1e4, "1e4 degC"}},  // everything melts before
+      {Dimension::kHeatCapacity,
+       "a heat capacity",
+       {{"J/K", 1}},
+       {1e9, "1e9 J/K"}},  // tonnes of metal
+      {Dimension::kThermalResistance,
+       "a thermal resistance",
+       {{"K/W", 1}},
+       {1e6, "1e6 K/W"}},  // perfect insulation
   };
   return dims;
 }
@@ -202,13 +258,20 @@ double parse_quantity(std::string_view text, Dimension dimension, const std::str
   }
   if (!std::isfinite(number)) throw RefusedConfig(key, value_text, "a finite number", source);
   const std::string unit = normalise_unit(trim(std::string_view(ptr, s.data() + s.size() - ptr)));
-  if (unit.empty()) return number;  // a bare number is SI, quoted or not
   const auto& expected = info(dimension);
-  if (const auto u = find_unit(expected, unit)) {
-    const double si = u->factor * number + u->offset;
+  const auto within_ceiling = [&](double si) {
     if (!std::isfinite(si)) throw RefusedConfig(key, value_text, "a finite number", source);
+    if (std::abs(si) > expected.ceiling.si) {
+      throw RefusedConfig(
+          key, value_text,
+          std::string(expected.label) + " of magnitude at most " + expected.ceiling.as_written,
+          source);
+    }
     return si;
-  }
+  };
+  if (unit.empty()) return within_ceiling(number);  // a bare number is SI, quoted or not
+  if (const auto u = find_unit(expected, unit))
+    return within_ceiling(u->factor * number + u->offset);
   // Say what the unit is, if it is one at all: "N*m is a torque" is the useful hint.
   for (const auto& other : table()) {
     if (other.dimension == dimension) continue;

@@ -322,6 +322,27 @@ std::optional<std::vector<std::string>> YamlSection::optional_text_list(const st
   return out;
 }
 
+std::optional<std::string> YamlSection::optional_label(const std::string& key,
+                                                       std::size_t max_bytes) {
+  const std::optional<std::string> v = optional_text(key);
+  if (!v) return v;
+  const std::string expected =
+      "a name of 1 to " + std::to_string(max_bytes) + " bytes without < > \" or control characters";
+  if (v->empty() || v->size() > max_bytes) fail(key, v->substr(0, 40), expected);
+  for (const char c : *v) {
+    const auto u = static_cast<unsigned char>(c);
+    if (c == '<' || c == '>' || c == '"' || u < 0x20 || u == 0x7F) {
+      std::string shown;
+      for (const char d : v->substr(0, 60)) {
+        const auto du = static_cast<unsigned char>(d);
+        shown += (du < 0x20 || du == 0x7F) ? '?' : d;  // the message itself stays one clean line
+      }
+      fail(key, shown, expected);
+    }
+  }
+  return v;
+}
+
 std::optional<bool> YamlSection::optional_boolean(const std::string& key) {
   const std::optional<YAML::Node> n = present(key, "true or false");
   if (!n) return std::nullopt;

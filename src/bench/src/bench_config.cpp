@@ -24,13 +24,7 @@ using strict_yaml::YamlSection;
 
 // Names and serials go into run folders, the runs index and report titles: one short line.
 void read_label(YamlSection& s, const char* key, std::string& out) {
-  const auto v = s.optional_text(key);
-  if (!v) return;
-  constexpr std::size_t kMaxLabel = 128;
-  if (v->empty() || v->size() > kMaxLabel) {
-    s.fail(key, *v, "a text of 1 to " + std::to_string(kMaxLabel) + " characters");
-  }
-  out = *v;
+  if (const auto v = s.optional_label(key)) out = *v;
 }
 
 // A sign of +1 or -1 (a direction, a channel's sense).
@@ -105,24 +99,29 @@ void read_can(YamlSection& s, CanSettings& can) {
     if (v->empty()) s.fail("interface", "", "inproc or an interface name");
     can.interface = *v;
   }
+  // Classic CAN ends at 1 Mbit/s, CAN FD's data phase near 8: 10 Mbit/s leaves room.
   set_if(s.optional_number("bitrate", 1e4, 1e7), can.bitrate);
-  if (const auto v = s.optional_quantity("sdo_timeout", Dimension::kTime)) {
-    if (*v <= 0) s.fail("sdo_timeout", s.value_text("sdo_timeout"), "a time > 0");
-    can.sdo_timeout_s = *v;
-  }
+  // An SDO answer later than 60 s is a dead node, not a slow one.
+  set_if(s.optional_quantity_in("sdo_timeout", Dimension::kTime, strict_yaml::kAboveZero, 60,
+                                "a time in (0, 60 s]"),
+         can.sdo_timeout_s);
+  // 0x1017 is a UNSIGNED16 of milliseconds.
   set_if(s.optional_quantity_in("heartbeat_producer", Dimension::kTime, 1e-3, 65.535,
                                 "a time in [1 ms, 65.535 s]"),
          can.heartbeat_producer_s);
-  set_if(s.optional_number("bus_load_warning", 0, 10), can.bus_load_warning);
-  if (const auto v = s.optional_quantity("cycle_timeout", Dimension::kTime)) {
-    if (*v <= 0) s.fail("cycle_timeout", s.value_text("cycle_timeout"), "a time > 0");
-    can.cycle_timeout_s = *v;
-  }
-  if (const auto v = s.optional_quantity("quick_stop_timeout", Dimension::kTime)) {
-    if (!(*v > 0) || *v > 10)
-      s.fail("quick_stop_timeout", s.value_text("quick_stop_timeout"), "a time in (0, 10 s]");
-    can.quick_stop_timeout_s = *v;
-  }
+  // A fraction of the bit rate: above 1 the warning could never come.
+  set_if(
+      s.optional_quantity_in("bus_load_warning", Dimension::kDimensionless, strict_yaml::kAboveZero,
+                             1, "a fraction of the bit rate in (0, 1], e.g. 0.8 or \"80 %\""),
+      can.bus_load_warning);
+  // Real time to wait for one cycle's PDOs on the simulated clock: beyond 10 s a cycle is lost.
+  set_if(s.optional_quantity_in("cycle_timeout", Dimension::kTime, strict_yaml::kAboveZero, 10,
+                                "a time in (0, 10 s]"),
+         can.cycle_timeout_s);
+  // Bench time for the drive to show a quick stop: a drive slower than 10 s is stopped by NMT.
+  set_if(s.optional_quantity_in("quick_stop_timeout", Dimension::kTime, strict_yaml::kAboveZero, 10,
+                                "a time in (0, 10 s]"),
+         can.quick_stop_timeout_s);
   if (auto g = s.optional_section("node_guarding")) {
     set_if(g->optional_quantity_in("guard_time", Dimension::kTime, 1e-3, 65.535,
                                    "a time in [1 ms, 65.535 s]"),
@@ -234,10 +233,8 @@ SensorCalibration read_calibration(YamlSection& device, const char* sensor) {
   cal.sensor = sensor;
   auto s = device.optional_section("calibration");
   if (!s) return cal;
-  cal.id = s->text("id");
-  if (cal.id.empty() || cal.id.size() > 64) {
-    s->fail("id", cal.id.substr(0, 40), "a calibration certificate number of 1 to 64 characters");
-  }
+  if (!s->has("id")) s->fail("id", "", "a calibration certificate number (the key is required)");
+  cal.id = *s->optional_label("id", 64);
   cal.due = s->text("due");
   if (!iso_date(cal.due)) s->fail("due", cal.due, "a date YYYY-MM-DD (the next calibration)");
   s->finish();
@@ -355,26 +352,59 @@ void read_channel_devices(YamlSection& root, BenchConfig& c) {
   devices->finish();
 }
 
+// A safety limit, bounded above as well as below: a limit nothing reaches is a limit switched
+// off (a heartbeat_timeout of 1e9 s was), and it is refused as such.
+struct SafetyKey {
+  const char* key;
+  Dimension dimension;
+  double most;           // SI
+  const char* expected;  // the range as written, and why it ends there
+  double SafetyLimits::*field;
+};
+
+constexpr SafetyKey kSafetyKeys[] = {
+    {"max_input_speed", Dimension::kAngularSpeed, 1e4,
+     "a speed in (0, 1e4 rad/s] (about 95 000 rpm: no gear input turns faster)",
+     &SafetyLimits::max_input_speed_rad_s},
+    {"max_brake_current", Dimension::kCurrent, 1000,
+     "a current in (0, 1000 A] (brake.limits.max_current_a ends there too)",
+     &SafetyLimits::max_brake_current_a},
+    {"max_brake_torque", Dimension::kTorque, 1e6,
+     "a torque in (0, 1e6 N*m] (brake.limits.max_torque_nm ends there too)",
+     &SafetyLimits::max_brake_torque_nm},
+    {"max_measured_torque", Dimension::kTorque, 1e6,
+     "a torque in (0, 1e6 N*m] (beyond every strain-wave gear and torque sensor)",
+     &SafetyLimits::max_measured_torque_nm},
+    {"max_following_error", Dimension::kAngle, 100 * 2 * M_PI,
+     "an angle in (0, 100 rev] of the input (a drive 100 turns behind has lost its load)",
+     &SafetyLimits::max_following_error_rad},
+    {"max_coil_temperature", Dimension::kTemperature, 250,
+     "a temperature in (0, 250 degC] (class H insulation ends at 180 degC)",
+     &SafetyLimits::max_coil_temperature_c},
+    {"max_te_excursion", Dimension::kAngle, M_PI,
+     "an angle in (0, 0.5 rev] (an error of half an output turn is no transmission error)",
+     &SafetyLimits::max_te_excursion_rad},
+    {"heartbeat_timeout", Dimension::kTime, 10,
+     "a time in (0, 10 s] (a node silent for longer is lost: the check would be off in effect)",
+     &SafetyLimits::heartbeat_timeout_s},
+    {"modbus_link_timeout", Dimension::kTime, 60,
+     "a time in (0, 60 s] (brake.timeouts.link_loss_ms ends there too)",
+     &SafetyLimits::modbus_link_timeout_s},
+};
+
 void read_safety(YamlSection& s, SafetyLimits& l) {
   // An absent key switches its limit off; a written one must be a limit. A negative or zero
   // value used to mean "off" too, so a sign typo silently disarmed the bench.
-  auto read = [&](const char* key, Dimension dim, double& out) {
-    const auto v = s.optional_quantity(key, dim);
-    if (!v) return;
+  for (const auto& k : kSafetyKeys) {
+    const auto v = s.optional_quantity(k.key, k.dimension);
+    if (!v) continue;
     if (!(*v > 0)) {
-      s.fail(key, s.value_text(key), "a limit > 0 (leave the key out to switch this limit off)");
+      s.fail(k.key, s.value_text(k.key),
+             std::string(k.expected) + "; leave the key out to switch this limit off");
     }
-    out = *v;
-  };
-  read("max_input_speed", Dimension::kAngularSpeed, l.max_input_speed_rad_s);
-  read("max_brake_current", Dimension::kCurrent, l.max_brake_current_a);
-  read("max_brake_torque", Dimension::kTorque, l.max_brake_torque_nm);
-  read("max_measured_torque", Dimension::kTorque, l.max_measured_torque_nm);
-  read("max_following_error", Dimension::kAngle, l.max_following_error_rad);
-  read("max_coil_temperature", Dimension::kTemperature, l.max_coil_temperature_c);
-  read("max_te_excursion", Dimension::kAngle, l.max_te_excursion_rad);
-  read("heartbeat_timeout", Dimension::kTime, l.heartbeat_timeout_s);
-  read("modbus_link_timeout", Dimension::kTime, l.modbus_link_timeout_s);
+    if (*v > k.most) s.fail(k.key, s.value_text(k.key), k.expected);
+    l.*k.field = *v;
+  }
   s.finish();
 }
 

@@ -380,9 +380,20 @@ void CanopenBench::nodes_to_preoperational() noexcept {
 void CanopenBench::check_cycle(const CycleRecord& record) noexcept {
   brake_->beat_if_due(now());
   if (quick_stop_watch_.pending()) watch_quick_stop(record.drive);
-  if (tripped_) return;
+  if (tripped_) {
+    // In fault the brake stays off whoever switches it on.
+    if (const auto energised = brake_->energised_while_idle()) {
+      spdlog::error("bench '{}': {}", config_.description.name, *energised);
+      brake_->make_safe();
+    }
+    return;
+  }
   check_liveness();
   if (tripped_) return;
+  if (const auto energised = brake_->energised_while_idle()) {
+    trip(*energised);
+    return;
+  }
   const auto& brake = brake_->cycle_readback();
   const auto temperature =
       brake ? std::optional<double>(brake->temperature_c) : std::optional<double>();

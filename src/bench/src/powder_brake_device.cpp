@@ -2,6 +2,8 @@
 
 #include <spdlog/spdlog.h>
 
+#include <cstdio>
+
 #include "wavebench/modbus/modbus_endpoint.hpp"
 
 namespace wavebench::bench {
@@ -117,6 +119,28 @@ bool PowderBrakeDevice::link_lost() const noexcept {
 
 std::string PowderBrakeDevice::last_error() const {
   return supervisor_ ? supervisor_->last_error() : std::string();
+}
+
+void PowderBrakeDevice::on_state_change(BenchLifecycle state) noexcept {
+  if (state_.exchange(state) == BenchLifecycle::kActive || state != BenchLifecycle::kActive)
+    idle_since_ = modbus::BrakeClient::Clock::now().time_since_epoch().count();
+}
+
+std::optional<std::string> PowderBrakeDevice::energised_while_idle() {
+  if (state_ == BenchLifecycle::kActive || !supervisor_ || !cycle_) return std::nullopt;
+  if (!cycle_->status.output_on) return std::nullopt;
+  using Clock = modbus::BrakeClient::Clock;
+  const auto taken = supervisor_->latest_time();
+  const auto idle = Clock::time_point(Clock::duration(idle_since_.load()));
+  if (taken <= idle + config_.link.response_timeout + config_.heartbeat.period) return std::nullopt;
+  if (taken == last_reported_) return std::nullopt;
+  last_reported_ = taken;
+  char values[96];
+  std::snprintf(values, sizeof values, "%.3g N*m, %.3g A", cycle_->torque_nm,
+                cycle_->coil_current_a);
+  return describe() + " energised while the bench is " + lifecycle_name(state_.load()) +
+         " (output on, " + values +
+         "): something other than this daemon switched it on; output commanded off";
 }
 
 void PowderBrakeDevice::on_cycle_end(CycleRecord& record) noexcept {

@@ -69,9 +69,13 @@ class InProcessSimulatedBench final : public ForwardingBench, public SimulatedBe
       brake.endpoint.port = 0;
       brake.unit_id = config_.brake.link.unit_id;
       brake.real_time = false;  // the plant steps the brake physics in bench time
+      // Loopback on an ephemeral port is still open to every local user: writes need a secret
+      // only this bench's brake client knows (brake_registers::unlock).
+      brake.unlock_secret = simdevices::random_unlock_secret();
       brake_ = simdevices::start_brake_server(brake);
       config_.brake.link.endpoint = brake.endpoint;
       config_.brake.link.endpoint.port = brake_->port();
+      config_.brake.link.unlock_secret = brake.unlock_secret;
     }
 
     virtual_bus_ = std::make_unique<can::VirtualCanBus>(io_);

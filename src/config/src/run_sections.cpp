@@ -23,7 +23,8 @@ void parse_solver_section(YamlSection& s, model::SimulationOptions& solver) {
   }
   if (s.has("t_end")) {
     solver.t_end = s.positive_quantity("t_end", Dimension::kTime);
-    s.require_within("t_end", solver.t_end, 1e-6, kMaxTwinSimulatedS, "a simulated time [s]");
+    s.require_within("t_end", solver.t_end, kMinTwinSimulatedS, kMaxTwinSimulatedS,
+                     "a simulated time [s]");
   }
   solver.transient = s.non_negative_quantity_or("transient", Dimension::kTime, solver.transient);
   if (!(solver.transient < solver.t_end)) {
@@ -60,10 +61,15 @@ void parse_spectrum(YamlSection& s, analysis::SpectrumOptions& o) {
                                        : analysis::Window::kHann;
   o.max_frequency_hz =
       s.non_negative_quantity_or("max_frequency", Dimension::kFrequency, o.max_frequency_hz);
+  // 0 = up to Nyquist; above the largest output rate (10 MHz) it means the same.
+  s.require_within("max_frequency", o.max_frequency_hz, 0, 10e6, "a frequency [Hz]");
   o.max_peaks = static_cast<int>(s.integer_or("max_peaks", kIntMin, kIntMax, o.max_peaks));
   s.require_within("max_peaks", o.max_peaks, 1, 1000, "a number of peaks");
   o.min_relative_amplitude = s.non_negative_quantity_or(
       "min_relative_amplitude", Dimension::kDimensionless, o.min_relative_amplitude);
+  // A fraction of the largest line: above 1 every peak, the largest too, would be dropped.
+  s.require_within("min_relative_amplitude", o.min_relative_amplitude, 0, 1,
+                   "a fraction of the largest line");
   s.finish();
 }
 
@@ -81,6 +87,8 @@ void parse_sweep(YamlSection& s, analysis::SweepOptions& o) {
   s.require_within("record_time", o.record_time, 0, kMaxTwinSimulatedS, "a time [s]");
   o.jump_threshold =
       s.non_negative_quantity_or("jump_threshold", Dimension::kDimensionless, o.jump_threshold);
+  // A relative change between neighbouring speeds: 100 (10 000 %) is a jump of any sense.
+  s.require_within("jump_threshold", o.jump_threshold, 0, 100, "a relative amplitude change");
   s.finish();
 }
 

@@ -10,7 +10,7 @@ namespace {
 TwinCase parse_document(const YAML::Node& root) {
   YamlSection doc = document_section(root);
   TwinCase twin;
-  twin.gear.name = doc.text_or("name", "");
+  twin.gear.name = doc.optional_label("name").value_or("");
   doc.text_or("description", "");  // free text for people
 
   YamlSection gear = doc.section("gear");

@@ -14,6 +14,7 @@
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/sample_json.hpp"
 #include "wavebench/exports/export_folder.hpp"
+#include "wavebench/exports/run_export.hpp"
 #include "wavebench/exports/sample_export.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/storage/channel_info.hpp"
@@ -264,29 +265,37 @@ std::optional<exports::ExportFormat> export_format(const ClientContext& ctx,
 }
 
 // The export folder refused before anything is fetched: exit 2, nothing touched.
-bool export_folder_refused(const ClientContext& ctx, const std::filesystem::path& dir) {
-  if (const auto refusal = exports::export_folder_refusal(dir)) {
+bool export_folder_refused(const ClientContext& ctx, const std::filesystem::path& dir,
+                           const std::string& run_id) {
+  if (const auto refusal = exports::export_folder_refusal(dir, run_id)) {
     *ctx.err << "wavebench: --out: " << dir.string() << ": " << *refusal << "\n";
     return true;
   }
   return false;
 }
 
-// samples.*, run.json and results.json into `dir`, each written whole.
+// A running run refused before its samples are fetched: exit 2, nothing written.
+bool running_run_refused(const ClientContext& ctx, const std::string& run_id,
+                         const nlohmann::json& run, bool partial) {
+  if (const auto refusal = exports::running_run_refusal(run, partial, "--partial")) {
+    *ctx.err << "wavebench: export " << run_id << ": " << *refusal << "\n";
+    return true;
+  }
+  return false;
+}
+
+// samples.*, run.json and results.json into `dir`: all of them or none.
 int write_export(const ClientContext& ctx, exports::ExportInput input, exports::ExportFormat format,
-                 const std::filesystem::path& dir) {
+                 const std::filesystem::path& dir, bool partial) {
   input.sample_json = [](const storage::SyncSample& s,
                          std::span<const storage::ChannelInfo> extra) {
     return sample_to_json(s, extra);
   };
-  exports::prepare_export_folder(dir, input.run_id);
-  const auto summary = exports::export_samples(input, format, dir);
-  storage::write_file_atomically(dir / "run.json", input.run.dump(2) + "\n");
-  if (!input.results.is_null()) {
-    storage::write_file_atomically(dir / "results.json", input.results.dump(2) + "\n");
-  }
-  *ctx.out << "exported " << summary.samples << " samples of run " << input.run_id << " to "
-           << summary.file.string() << "\n";
+  const std::string run_id = input.run_id;
+  const auto summary = exports::export_run(std::move(input), format, dir, partial);
+  *ctx.out << "exported " << summary.samples << " samples of run " << run_id << " to "
+           << summary.file.string()
+           << (summary.partial ? " (partial: the run is still running)" : "") << "\n";
   if (summary.torn_tail) *ctx.err << "note: the sample log ends in a torn record (ignored)\n";
   if (summary.corrupt_record) {
     *ctx.err << "warning: the sample log has a corrupt record; read up to it\n";
@@ -334,14 +343,15 @@ nlohmann::json json_file_or_null(const std::filesystem::path& path) {
 }  // namespace
 
 int client_export(const ClientContext& ctx, const std::string& run_id,
-                  const std::filesystem::path& out_dir, const std::string& format) {
+                  const std::filesystem::path& out_dir, const std::string& format, bool partial) {
   const auto f = export_format(ctx, format);
   if (!f) return 2;
   const auto dir = out_dir.empty() ? std::filesystem::path(run_id) : out_dir;
-  if (export_folder_refused(ctx, dir)) return 2;
+  if (export_folder_refused(ctx, dir, run_id)) return 2;
   return with_client(ctx, false, [&](const DaemonClient& client) {
     const auto detail = client.get("/api/runs/" + url_encode(run_id));
     if (!detail.ok()) return refused(ctx, "export " + run_id, detail);
+    if (running_run_refused(ctx, run_id, detail.body["run"], partial)) return 2;
     exports::ExportInput input;
     input.run_id = run_id;
     input.run = detail.body["run"];
@@ -350,13 +360,13 @@ int client_export(const ClientContext& ctx, const std::string& run_id,
     input.pages = [&client, &run_id](std::uint64_t from, std::size_t count) {
       return page_from_api(client, run_id, from, count);
     };
-    return write_export(ctx, std::move(input), *f, dir);
+    return write_export(ctx, std::move(input), *f, dir, partial);
   });
 }
 
 int local_export(const ClientContext& ctx, const std::filesystem::path& runs_dir,
                  const std::string& run_id, const std::filesystem::path& out_dir,
-                 const std::string& format) {
+                 const std::string& format, bool partial) {
   const auto f = export_format(ctx, format);
   if (!f) return 2;
   // A run id names a folder directly under the store: nothing that leaves it.
@@ -371,15 +381,16 @@ int local_export(const ClientContext& ctx, const std::filesystem::path& runs_dir
     return 2;
   }
   const auto dir = out_dir.empty() ? std::filesystem::path(run_id) : out_dir;
-  if (export_folder_refused(ctx, dir)) return 2;
+  if (export_folder_refused(ctx, dir, run_id)) return 2;
   try {
     exports::ExportInput input;
     input.run_id = run_id;
     input.run = json_file_or_null(run_dir / "status.json");
+    if (running_run_refused(ctx, run_id, input.run, partial)) return 2;
     input.results = json_file_or_null(run_dir / "results.json");
     input.page_records = kExportPage;
     input.pages = exports::sample_log_pages(run_dir / "samples.wbs");
-    return write_export(ctx, std::move(input), *f, dir);
+    return write_export(ctx, std::move(input), *f, dir, partial);
   } catch (const std::exception& e) {
     *ctx.err << "wavebench: export " << run_id << ": " << e.what() << "\n";
     return 1;

@@ -9,6 +9,7 @@
 #include "wavebench/daemon/console_files.hpp"
 #include "wavebench/daemon/fleet_api.hpp"
 #include "wavebench/daemon/publishing_run_launcher.hpp"
+#include "wavebench/exports/export_scratch.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
 #include "wavebench/fleet/sqlite_results_store.hpp"
 
@@ -72,6 +73,10 @@ Daemon::Daemon(DaemonSetup setup)
   incomplete.status = storage::RunStatus::kIncomplete;
   spdlog::info("runs in {}: {} indexed, {} incomplete", store_.root().string(), store_.count_runs(),
                store_.count_runs(incomplete));
+  // Scratch of downloads a killed daemon was answering (issue #22): nothing else removes it.
+  if (const auto stale = exports::remove_stale_export_scratch(); stale > 0) {
+    spdlog::info("removed {} stale export scratch folder(s) of an earlier daemon", stale);
+  }
   spdlog::info("results store: {} ({} runs to send)",
                setup_.results.shared() ? setup_.results.url : "this bench's own (index.sqlite)",
                outbox_->counts().pending);

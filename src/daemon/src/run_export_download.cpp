@@ -1,7 +1,5 @@
 #include "wavebench/daemon/run_export_download.hpp"
 
-#include <unistd.h>
-
 #include <atomic>
 #include <fstream>
 #include <optional>
@@ -10,6 +8,8 @@
 #include <stdexcept>
 
 #include "wavebench/daemon/sample_json.hpp"
+#include "wavebench/exports/export_scratch.hpp"
+#include "wavebench/exports/run_export.hpp"
 #include "wavebench/exports/sample_export.hpp"
 #include "wavebench/storage/sample_csv.hpp"
 
@@ -38,8 +38,10 @@ const char* content_type(exports::ExportFormat format) {
 struct ExportRequest {
   exports::ExportFormat format = exports::ExportFormat::kCsv;
   std::string format_name;
+  bool allow_partial = false;  // partial=1: a running run's samples so far, marked partial
 };
 
+// Streamed straight from the log (a finished run's; a partial export is built as a file).
 bool made_as_text(exports::ExportFormat format) {
   return format == exports::ExportFormat::kCsv || format == exports::ExportFormat::kJson;
 }
@@ -63,6 +65,13 @@ std::optional<ExportRequest> export_request_from(const HttpTarget& target, ApiRe
     return std::nullopt;
   }
   request.format = *format;
+  const auto partial = target.query.find("partial");
+  const std::string partial_text = partial == target.query.end() ? "0" : partial->second;
+  if (partial_text != "0" && partial_text != "1") {
+    refusal = api_error(400, "bad request", "partial: got '" + partial_text + "', expected 0 or 1");
+    return std::nullopt;
+  }
+  request.allow_partial = partial_text == "1";
   return request;
 }
 
@@ -72,6 +81,7 @@ exports::ExportInput export_input(const storage::RunStore& store, const std::str
   exports::ExportInput input;
   input.run_id = id;
   input.run = storage::to_json(run);
+  input.partial = exports::run_still_running(input.run);
   input.results = json_file_or_null(paths.results);
   input.pages = exports::sample_log_pages(paths.samples);
   input.sample_json = [](const storage::SyncSample& s,
@@ -120,7 +130,8 @@ class SampleTextChunks : public BodyChunks {
     for (const auto& s : page.samples) {
       if (!first_sample_) text += ',';
       first_sample_ = false;
-      text += input_.sample_json(s, page.header.extra_channels).dump();
+      text += input_.sample_json(s, page.header.extra_channels)
+                  .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     }
     first_ = false;
     if (done_) text += "]\n";
@@ -161,8 +172,7 @@ class ScratchFolder {
  public:
   explicit ScratchFolder(const fs::path& parent) {
     static std::atomic<unsigned> counter{0};
-    path_ = parent /
-            ("wavebench-export-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    path_ = parent / exports::export_scratch_name(counter++);
     fs::create_directories(path_);
   }
   ~ScratchFolder() {
@@ -197,6 +207,11 @@ ApiResponse run_export_download(const storage::RunStore& store, const std::strin
   const auto log_bytes = fs::file_size(store.paths(id).samples, ec);
   if (ec) return api_error(404, "not found", "run '" + id + "' has no sample log");
   auto input = export_input(store, id, *run);
+  // A run still running only with partial=1, and then the file says it is partial.
+  if (const auto running =
+          exports::running_run_refusal(input.run, request->allow_partial, "partial=1")) {
+    return api_error(409, "conflict", "run '" + id + "': " + *running);
+  }
 
   ApiResponse response;
   response.content_type = content_type(request->format);
@@ -204,7 +219,8 @@ ApiResponse run_export_download(const storage::RunStore& store, const std::strin
   response.headers.push_back(
       {"Content-Disposition", "attachment; filename=\"" + id + "-" + file_name + "\""});
 
-  if (made_as_text(request->format)) {
+  // A partial export is made by the export library, which marks it, like mat and hdf5.
+  if (made_as_text(request->format) && !input.partial) {
     // The count the log holds now; the body stops early only at a corrupt record.
     response.headers.push_back(
         {"X-Wavebench-Samples", std::to_string(input.pages(0, 1).total_records)});

@@ -31,16 +31,43 @@ constexpr storage::FolderOwner kOwner{kExportMarkerFile, "wavebench export", kOw
 
 }  // namespace
 
-std::optional<std::string> export_folder_refusal(const fs::path& dir) {
-  return storage::owned_folder_refusal(dir, kOwner);
+std::optional<std::string> export_folder_refusal(const fs::path& dir, const std::string& run_id) {
+  if (auto refusal = storage::owned_folder_refusal(dir, kOwner)) return refusal;
+  const auto marker = storage::read_owner_marker(dir, kOwner);
+  if (marker.is_object()) {
+    const auto* held = marker.contains("run_id") && marker["run_id"].is_string()
+                           ? marker["run_id"].get_ptr<const std::string*>()
+                           : nullptr;
+    if (!held || *held != run_id) {
+      return "the folder holds the export of run '" + (held ? *held : std::string("?")) +
+             "', not of run '" + run_id +
+             "'; an export folder holds one run's export: name a new or empty folder";
+    }
+  }
+  return std::nullopt;
 }
 
-void prepare_export_folder(const fs::path& dir, const std::string& run_id) {
-  if (const auto refusal = export_folder_refusal(dir)) {
+bool prepare_export_folder(const fs::path& dir, const std::string& run_id) {
+  if (const auto refusal = export_folder_refusal(dir, run_id)) {
     throw std::runtime_error("--out " + dir.string() + ": " + *refusal);
   }
+  std::error_code ec;
+  const bool bare = !fs::exists(dir, ec) || fs::is_empty(dir, ec);
   fs::create_directories(dir);
+  storage::remove_stale_temporaries(dir, kOwner);
   storage::write_owner_marker(dir, kOwner, {{"run_id", run_id}});
+  return bare;
+}
+
+void remove_export_folder_if_bare(const fs::path& dir) {
+  std::error_code ec;
+  if (storage::first_foreign_entry(dir, kOwner).empty()) {
+    for (const auto& entry : fs::directory_iterator(dir, ec)) {
+      if (entry.path().filename() != kExportMarkerFile) return;
+    }
+    fs::remove(dir / kExportMarkerFile, ec);
+    fs::remove(dir, ec);
+  }
 }
 
 PendingFile::PendingFile(fs::path target)

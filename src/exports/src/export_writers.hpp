@@ -31,6 +31,15 @@ PageWalk write_hdf5_file(const ExportInput& input, const std::filesystem::path& 
 PageWalk write_csv_file(const ExportInput& input, const std::filesystem::path& file);
 PageWalk write_json_file(const ExportInput& input, const std::filesystem::path& file);
 
+// The samples in `format` into `file` (a new file, not renamed anywhere); errors name
+// `target`, the name it is written for.
+PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
+                            const std::filesystem::path& file, const std::filesystem::path& target);
+
+// `j` as indented text; bytes that are not UTF-8 (a hostile run record) become U+FFFD instead
+// of an exception mid-export. `ascii`: non-ASCII as \u escapes (MAT 5 char data is 8-bit).
+std::string json_text(const nlohmann::json& j, bool ascii = false);
+
 // A results key as a MATLAB identifier / HDF5 link name: [A-Za-z0-9_], a letter first, at most
 // 63 characters; empty when nothing of it is left.
 std::string field_name(const std::string& key);

@@ -2,6 +2,8 @@
 // page appended as it is read; a "unit" attribute on every channel; results_json, run_json and
 // /results (numbers, numeric lists, strings; objects as groups) at the root.
 #include <hdf5.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include <algorithm>
 #include <cstring>
@@ -22,9 +24,7 @@ using nlohmann::json;
 // One HDF5 identifier, closed with its own H5*close when it goes.
 class Handle {
  public:
-  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
-    if (id_ < 0) throw std::runtime_error("HDF5: " + what + " failed");
-  }
+  Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what);
   ~Handle() {
     if (id_ >= 0) close_(id_);
   }
@@ -38,9 +38,87 @@ class Handle {
   herr_t (*close_)(hid_t);
 };
 
-void check(herr_t status, const std::string& what) {
-  if (status < 0) throw std::runtime_error("HDF5: " + what + " failed");
+// The innermost message of libhdf5's error stack (for a failed write, the system's: "file
+// write failed: ... errno = 28, error message = 'No space left on device'").
+std::string hdf5_error_text() {
+  std::string text;
+  H5Ewalk2(
+      H5E_DEFAULT, H5E_WALK_UPWARD,
+      [](unsigned n, const H5E_error2_t* e, void* out) -> herr_t {
+        if (n == 0 && e->desc) *static_cast<std::string*>(out) = e->desc;
+        return 0;
+      },
+      &text);
+  // A failed system call's description is long (time, buffer address, sizes): its reason is
+  // the part that matters to the user.
+  if (const auto at = text.find("error message = '"); at != std::string::npos) {
+    const auto begin = at + 17;
+    const auto end = text.find('\'', begin);
+    const auto errno_at = text.find("errno = ");
+    std::string why = text.substr(begin, end == std::string::npos ? end : end - begin);
+    if (errno_at != std::string::npos) {
+      why += " (errno " + text.substr(errno_at + 8, text.find(',', errno_at) - errno_at - 8) + ")";
+    }
+    return why;
+  }
+  return text;
 }
+
+[[noreturn]] void fail(const std::string& what) {
+  const std::string why = hdf5_error_text();
+  throw std::runtime_error("HDF5: " + what + " failed" + (why.empty() ? "" : ": " + why));
+}
+
+void check(herr_t status, const std::string& what) {
+  if (status < 0) fail(what);
+}
+
+Handle::Handle(hid_t id, herr_t (*close)(hid_t), const std::string& what) : id_(id), close_(close) {
+  if (id_ < 0) fail(what);
+}
+
+// The file being written. Closed by close() when complete; when it is given up (an exception,
+// a full disk) its descriptor is first pointed at a scratch memory file so that the close's
+// flush cannot fail: libhdf5 1.10 keeps the id of a file whose close failed, half torn down,
+// and H5close at exit then crashes on it (issue #22: SIGSEGV at exit or SIGTERM). The bytes
+// written to the memory file are dropped; the temporary file on disk is removed by the caller.
+class Hdf5File {
+ public:
+  explicit Hdf5File(const std::filesystem::path& file) {
+    Handle access(H5Pcreate(H5P_FILE_ACCESS), H5Pclose, "file access properties");
+    // Closing the file closes whatever is still open in it: nothing outlives an error.
+    check(H5Pset_fclose_degree(access.get(), H5F_CLOSE_STRONG), "close degree");
+    id_ = H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, access.get());
+    if (id_ < 0) fail("create " + file.string());
+  }
+  ~Hdf5File() {
+    if (id_ < 0) return;
+    void* handle = nullptr;
+    if (H5Fget_vfd_handle(id_, H5P_DEFAULT, &handle) >= 0 && handle) {
+      const int discard = ::memfd_create("wavebench-hdf5-discard", MFD_CLOEXEC);
+      if (discard >= 0) {
+        ::dup2(discard, *static_cast<int*>(handle));
+        ::close(discard);
+      }
+    }
+    H5Fclose(id_);
+  }
+  Hdf5File(const Hdf5File&) = delete;
+  Hdf5File& operator=(const Hdf5File&) = delete;
+  hid_t get() const { return id_; }
+
+  void close() {
+    const hid_t id = id_;
+    id_ = -1;
+    if (H5Fclose(id) < 0) {
+      id_ = id;  // still open in the library: given up as above
+      fail("close");
+    }
+  }
+
+ private:
+  hid_t id_ = -1;
+};
 
 Handle string_type() {
   Handle t(H5Tcopy(H5T_C_S1), H5Tclose, "string type");
@@ -118,15 +196,13 @@ struct ColumnDataset {
 
 constexpr hsize_t kChunk = 16384;
 
-}  // namespace
-
-PageWalk write_hdf5_file(const ExportInput& input, const std::filesystem::path& file) {
-  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
-  Handle h5(H5Fcreate(file.c_str(), H5F_ACC_TRUNC, H5P_DEFAULT, H5P_DEFAULT), H5Fclose,
-            "create " + file.string());
-  string_attribute(h5.get(), "run_id", input.run_id);
-  string_attribute(h5.get(), "written_by", "wavebench export");
-  Handle samples(H5Gcreate2(h5.get(), "samples", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+// The file's contents; its objects are closed when this returns.
+PageWalk write_contents(hid_t h5, const ExportInput& input) {
+  string_attribute(h5, "run_id", input.run_id);
+  string_attribute(h5, "written_by", "wavebench export");
+  // "true": the run was still running, the file holds only the samples logged so far.
+  string_attribute(h5, "partial", input.partial ? "true" : "false");
+  Handle samples(H5Gcreate2(h5, "samples", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                  "group samples");
   const auto columns = export_columns(extra_channels_of(input));
   std::vector<ColumnDataset> sets;
@@ -208,13 +284,30 @@ PageWalk write_hdf5_file(const ExportInput& input, const std::filesystem::path& 
   });
 
   const json results = input.results.is_null() ? json::object() : input.results;
-  string_dataset(h5.get(), "results_json", results.dump(2));
-  string_dataset(h5.get(), "run_json", input.run.dump(2));
-  Handle group(H5Gcreate2(h5.get(), "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
+  string_dataset(h5, "results_json", json_text(results));
+  string_dataset(h5, "run_json", json_text(input.run));
+  Handle group(H5Gcreate2(h5, "results", H5P_DEFAULT, H5P_DEFAULT, H5P_DEFAULT), H5Gclose,
                "group results");
   results_into(group.get(), results, 0);
   sets.clear();
-  check(H5Fflush(h5.get(), H5F_SCOPE_GLOBAL), "flush");
+  // Everything reaches the file while its objects are open: a failure here is an exception
+  // and the file is given up, not a close that fails half way.
+  check(H5Fflush(h5, H5F_SCOPE_GLOBAL), "flush");
+  return walk;
+}
+
+}  // namespace
+
+PageWalk write_hdf5_file(const ExportInput& input, const std::filesystem::path& file) {
+  // No library teardown at exit: a file whose close failed (the scratch memory file full too)
+  // stays half torn down in libhdf5 1.10, and H5close at exit or SIGTERM would crash on it.
+  // Every file is closed here, on every path; nothing is left for the teardown to flush.
+  static const bool no_teardown_at_exit = H5dont_atexit() >= 0;
+  (void)no_teardown_at_exit;
+  H5Eset_auto2(H5E_DEFAULT, nullptr, nullptr);  // errors become exceptions, not stderr noise
+  Hdf5File h5(file);
+  const auto walk = write_contents(h5.get(), input);
+  h5.close();
   return walk;
 }
 

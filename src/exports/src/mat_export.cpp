@@ -6,6 +6,8 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <cstring>
+#include <fstream>
 #include <memory>
 #include <set>
 #include <stdexcept>
@@ -63,10 +65,39 @@ MatVar double_var(const char* name, const std::vector<double>& values, bool row 
                  name ? name : "(field)");
 }
 
-void write(mat_t* mat, MatVar var, const std::string& name) {
+void write(mat_t* mat, MatVar var, const std::string& name, std::size_t& written) {
   if (Mat_VarWrite(mat, var.get(), MAT_COMPRESSION_NONE) != 0) {
     throw std::runtime_error("matio: cannot write variable " + name);
   }
+  ++written;
+}
+
+// libmatio writes through stdio and does not report a write that failed (a full disk: it
+// returns success for a file cut short). So the file is checked as MAT 5 lays it out: a
+// 128-byte header, then one tagged element per variable (u32 type, u32 byte count, the
+// bytes), ending exactly at the end of the file.
+void check_mat5_layout(const std::filesystem::path& file, std::size_t variables) {
+  std::ifstream in(file, std::ios::binary);
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(file, ec);
+  const auto cut = [&](const std::string& why) {
+    throw std::runtime_error("matio: the file was not written whole (" + why +
+                             "; is the disk full?)");
+  };
+  if (!in || ec || size < 128) cut("no header");
+  std::uint64_t at = 128;
+  for (std::size_t i = 0; i < variables; ++i) {
+    unsigned char tag[8];
+    in.seekg(static_cast<std::streamoff>(at));
+    if (at + 8 > size || !in.read(reinterpret_cast<char*>(tag), 8)) {
+      cut("variable " + std::to_string(i + 1) + " of " + std::to_string(variables) + " missing");
+    }
+    std::uint32_t bytes = 0;
+    std::memcpy(&bytes, tag + 4, 4);  // written in this machine's order, as the header says
+    at += 8 + std::uint64_t{bytes};
+    if (at > size) cut("variable " + std::to_string(i + 1) + " cut short");
+  }
+  if (at != size) cut(std::to_string(size - at) + " bytes after the last variable");
 }
 
 bool numeric_list(const json& j) {
@@ -174,6 +205,7 @@ PageWalk write_mat_file(const ExportInput& input, const std::filesystem::path& f
   const std::size_t per_pass =
       static_cast<std::size_t>(std::max<std::uint64_t>(1, kColumnBudgetBytes / bytes_per_column));
   PageWalk walk;
+  std::size_t variables = 0;
   std::vector<std::string> unit_names;
   std::vector<std::string> unit_values;
   for (std::size_t begin = 0; begin < columns.size(); begin += per_pass) {
@@ -185,7 +217,7 @@ PageWalk write_mat_file(const ExportInput& input, const std::filesystem::path& f
       }
     });
     for (std::size_t i = begin; i < end; ++i) {
-      write(mat.get(), values[i - begin].var(columns[i]), columns[i].name);
+      write(mat.get(), values[i - begin].var(columns[i]), columns[i].name, variables);
       values[i - begin] = ColumnValues();  // written: its memory goes before the next
       if (!columns[i].unit.empty()) {
         unit_names.push_back(columns[i].name);
@@ -195,14 +227,17 @@ PageWalk write_mat_file(const ExportInput& input, const std::filesystem::path& f
   }
   json units = json::object();
   for (std::size_t i = 0; i < unit_names.size(); ++i) units[unit_names[i]] = unit_values[i];
-  write(mat.get(), to_mat("units", units, 0), "units");
+  write(mat.get(), to_mat("units", units, 0), "units", variables);
   const json results = input.results.is_null() ? json::object() : input.results;
   // ensure_ascii: MAT 5 char data here is 8-bit; \u escapes keep the text exact.
-  write(mat.get(), char_var("results_json", results.dump(2, ' ', true)), "results_json");
-  write(mat.get(), char_var("run_json", input.run.dump(2, ' ', true)), "run_json");
-  write(mat.get(), to_mat("results", results, 0), "results");
-  write(mat.get(), char_var("run_id", input.run_id), "run_id");
+  write(mat.get(), char_var("results_json", json_text(results, true)), "results_json", variables);
+  write(mat.get(), char_var("run_json", json_text(input.run, true)), "run_json", variables);
+  write(mat.get(), to_mat("results", results, 0), "results", variables);
+  write(mat.get(), char_var("run_id", input.run_id), "run_id", variables);
+  // 1: the run was still running, the file holds only the samples logged so far.
+  write(mat.get(), double_var("partial", {input.partial ? 1.0 : 0.0}), "partial", variables);
   if (Mat_Close(mat.release()) != 0) throw std::runtime_error("matio: cannot close the file");
+  check_mat5_layout(file, variables);
   return walk;
 }
 

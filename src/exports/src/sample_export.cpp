@@ -36,6 +36,10 @@ PageWalk walk_pages(const ExportInput& input,
   return walk;
 }
 
+std::string json_text(const nlohmann::json& j, bool ascii) {
+  return j.dump(2, ' ', ascii, nlohmann::json::error_handler_t::replace);
+}
+
 std::string field_name(const std::string& key) {
   std::string out;
   for (const char c : key) {
@@ -48,35 +52,39 @@ std::string field_name(const std::string& key) {
   return out;
 }
 
+PageWalk write_samples_file(const ExportInput& input, ExportFormat format,
+                            const std::filesystem::path& file,
+                            const std::filesystem::path& target) {
+  if (!input.pages) throw std::invalid_argument("export: no sample pages given");
+  try {
+    switch (format) {
+      case ExportFormat::kMat:
+        return write_mat_file(input, file);
+      case ExportFormat::kHdf5:
+        return write_hdf5_file(input, file);
+      case ExportFormat::kCsv:
+        return write_csv_file(input, file);
+      case ExportFormat::kJson:
+        if (!input.sample_json) throw std::invalid_argument("export: no sample JSON form given");
+        return write_json_file(input, file);
+    }
+  } catch (const std::exception& e) {
+    // Named by the file the user asked for, not its temporary name.
+    throw std::runtime_error(target.string() + ": " + e.what());
+  }
+  throw std::logic_error("export format");
+}
+
 }  // namespace detail
 
 ExportSummary export_samples(const ExportInput& input, ExportFormat format,
                              const std::filesystem::path& dir) {
-  if (!input.pages) throw std::invalid_argument("export: no sample pages given");
   ExportSummary summary;
   summary.file = dir / samples_file_name(format);
   PendingFile pending(summary.file);
-  detail::PageWalk walk;
-  try {
-    switch (format) {
-      case ExportFormat::kMat:
-        walk = detail::write_mat_file(input, pending.temp());
-        break;
-      case ExportFormat::kHdf5:
-        walk = detail::write_hdf5_file(input, pending.temp());
-        break;
-      case ExportFormat::kCsv:
-        walk = detail::write_csv_file(input, pending.temp());
-        break;
-      case ExportFormat::kJson:
-        if (!input.sample_json) throw std::invalid_argument("export: no sample JSON form given");
-        walk = detail::write_json_file(input, pending.temp());
-        break;
-    }
-  } catch (const std::exception& e) {
-    throw std::runtime_error(summary.file.string() + ": " + e.what());
-  }
+  const auto walk = detail::write_samples_file(input, format, pending.temp(), summary.file);
   pending.commit();
+  summary.partial = input.partial;
   summary.samples = walk.samples;
   summary.torn_tail = walk.torn_tail;
   summary.corrupt_record = walk.corrupt_record;

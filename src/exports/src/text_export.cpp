@@ -26,6 +26,14 @@ void close_checked(std::ofstream& out, const std::filesystem::path& file) {
 
 PageWalk write_csv_file(const ExportInput& input, const std::filesystem::path& file) {
   auto out = open_new(file);
+  // Only a partial export (asked for explicitly) has this line; readers skip it as a comment
+  // (pandas comment='#', MATLAB's CommentStyle).
+  if (input.partial) {
+    out << "# partial export: run "
+        << nlohmann::json(input.run_id)
+               .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+        << " was still running; only the samples logged so far\n";
+  }
   bool header = true;
   auto walk = walk_pages(input, [&](const storage::SampleLogPage& page) {
     std::ostringstream text;
@@ -43,16 +51,24 @@ PageWalk write_csv_file(const ExportInput& input, const std::filesystem::path& f
 
 PageWalk write_json_file(const ExportInput& input, const std::filesystem::path& file) {
   auto out = open_new(file);
+  // A partial export (asked for explicitly) is an object that says so around the list.
+  if (input.partial) {
+    out << R"({"partial":true,"run_id":)"
+        << nlohmann::json(input.run_id)
+               .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace)
+        << R"(,"samples":)";
+  }
   out << '[';
   bool first = true;
   auto walk = walk_pages(input, [&](const storage::SampleLogPage& page) {
     for (const auto& s : page.samples) {
       if (!first) out << ',';
       first = false;
-      out << input.sample_json(s, page.header.extra_channels).dump();
+      out << input.sample_json(s, page.header.extra_channels)
+                 .dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
     }
   });
-  out << "]\n";
+  out << (input.partial ? "]}\n" : "]\n");
   close_checked(out, file);
   return walk;
 }

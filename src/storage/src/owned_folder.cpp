@@ -1,5 +1,8 @@
 #include "wavebench/storage/owned_folder.hpp"
 
+#include <signal.h>
+
+#include <cerrno>
 #include <fstream>
 #include <sstream>
 #include <stdexcept>
@@ -19,17 +22,46 @@ bool own_file_name(const std::string& name, const FolderOwner& owner) {
 
 }  // namespace
 
-bool has_owner_marker(const fs::path& dir, const FolderOwner& owner) {
+nlohmann::json read_owner_marker(const fs::path& dir, const FolderOwner& owner) {
   const fs::path marker = dir / owner.marker_file;
   std::error_code ec;
   if (!fs::is_regular_file(fs::symlink_status(marker, ec)) || fs::file_size(marker, ec) > 4096) {
-    return false;
+    return nullptr;
   }
   std::ifstream in(marker);
   std::stringstream text;
   text << in.rdbuf();
-  const auto j = nlohmann::json::parse(text.str(), nullptr, false);
-  return j.is_object() && j.value("written_by", "") == owner.written_by;
+  auto j = nlohmann::json::parse(text.str(), nullptr, false);
+  if (!j.is_object() || j.value("written_by", "") != owner.written_by) return nullptr;
+  return j;
+}
+
+bool has_owner_marker(const fs::path& dir, const FolderOwner& owner) {
+  return !read_owner_marker(dir, owner).is_null();
+}
+
+std::size_t remove_stale_temporaries(const fs::path& dir, const FolderOwner& owner) {
+  std::size_t removed = 0;
+  std::error_code ec;
+  for (const auto& entry : fs::directory_iterator(dir, ec)) {
+    const std::string name = entry.path().filename().string();
+    for (const auto own : owner.own_files) {
+      const std::string prefix = "." + std::string(own) + ".tmp";
+      if (name.size() <= prefix.size() || name.compare(0, prefix.size(), prefix) != 0) continue;
+      const std::string pid_text = name.substr(prefix.size());
+      if (pid_text.size() > 9 || pid_text.find_first_not_of("0123456789") != std::string::npos) {
+        continue;
+      }
+      const auto pid = static_cast<pid_t>(std::stol(pid_text));
+      // A live writer's (another export into this folder right now) is left alone.
+      const bool gone = pid > 0 && ::kill(pid, 0) != 0 && errno == ESRCH;
+      std::error_code rm;
+      if (gone && fs::is_regular_file(entry.symlink_status(rm)) && fs::remove(entry.path(), rm)) {
+        ++removed;
+      }
+    }
+  }
+  return removed;
 }
 
 std::string first_foreign_entry(const fs::path& dir, const FolderOwner& owner) {

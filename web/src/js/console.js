@@ -1,7 +1,7 @@
 // The operator console: start form, progress and verdict, live plots, bench panel, stop. The
 // daemon's status arrives with the live stream (every fifth frame), so nothing here polls but
 // the session check, which also keeps the session alive while the page is open.
-import { api, get, post } from './api.js';
+import { get, post } from './api.js';
 import { LivePlots } from './live_plots.js';
 import { StartForm } from './start_form.js';
 import { diagnosisFlagsTable } from './twin_diagnosis.js';
@@ -47,8 +47,6 @@ function table(el, rows) {
 
 function setSession(authenticated) {
   loggedIn = authenticated;
-  $('login-link').hidden = authenticated;
-  $('logout').hidden = !authenticated;
   document.body.classList.toggle('read-only', !authenticated);
   $('reset').disabled = !authenticated;
   form.setEnabled(authenticated && lastStatus !== null && lastStatus.state === 'ready');
@@ -343,14 +341,6 @@ const plots = new LivePlots({ onStatus: showStatus });
 window.wavebenchLive = plots;
 
 $('reset').addEventListener('click', reset);
-$('logout').addEventListener('click', async () => {
-  try {
-    await api('DELETE', '/api/session');
-  } catch (_) {
-    // logged out either way
-  }
-  setSession(false);
-});
 $('window').addEventListener('change', () => plots.connect(Number($('window').value)));
 
 get('/api/status').then(showStatus).catch((e) => message(e.message, true));

@@ -8,8 +8,11 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
+#include <cstdio>
 #include <cstring>
+#include <random>
 #include <stdexcept>
 #include <vector>
 
@@ -225,9 +228,46 @@ void BrakeServer::reply_from_unit(int fd, const uint8_t* query, int unit) {
   write_all(fd, frame.data(), frame.size());
 }
 
+std::optional<BrakeServer::Outcome> BrakeServer::refuse_locked_write(int fd, const uint8_t* query,
+                                                                     int length) {
+  if (!options_.unlock_secret) return std::nullopt;
+  const int header = modbus_get_header_length(ctx_);
+  const uint8_t* pdu = query + header;
+  const uint8_t fc = pdu[0];
+  const bool write =
+      fc == MODBUS_FC_WRITE_SINGLE_COIL || fc == MODBUS_FC_WRITE_SINGLE_REGISTER ||
+      fc == MODBUS_FC_WRITE_MULTIPLE_COILS || fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS ||
+      fc == MODBUS_FC_MASK_WRITE_REGISTER || fc == MODBUS_FC_WRITE_AND_READ_REGISTERS;
+  if (!write) return std::nullopt;
+  constexpr int kUnlockBytes = 2 * brake_registers::unlock_count;
+  if (fc == MODBUS_FC_WRITE_MULTIPLE_REGISTERS && length >= header + 6 &&
+      read_u16(pdu + 1) == brake_registers::unlock) {
+    const bool whole = read_u16(pdu + 3) == brake_registers::unlock_count &&
+                       pdu[5] == kUnlockBytes && length >= header + 6 + kUnlockBytes;
+    std::uint64_t secret = 0;
+    for (int i = 0; whole && i < brake_registers::unlock_count; ++i)
+      secret = (secret << 16) | static_cast<std::uint64_t>(read_u16(pdu + 6 + 2 * i));
+    if (whole && secret == *options_.unlock_secret) {
+      unlocked_.insert(fd);
+      reply_from_unit(fd, query, options_.unit_id);  // the echo of a write; nothing stored
+      return Outcome::replied;
+    }
+    ++wrong_secrets_;
+    modbus_reply_exception(ctx_, query, MODBUS_EXCEPTION_ILLEGAL_DATA_VALUE);
+    unlocked_.erase(fd);
+    return options_.endpoint.transport == modbus::Transport::tcp ? Outcome::drop_connection
+                                                                 : Outcome::replied;
+  }
+  if (unlocked_.count(fd) != 0) return std::nullopt;
+  ++writes_refused_;
+  modbus_reply_exception(ctx_, query, MODBUS_EXCEPTION_ILLEGAL_FUNCTION);
+  return Outcome::replied;
+}
+
 BrakeServer::Outcome BrakeServer::handle(int fd, const uint8_t* query, int length) {
   ++requests_;
   const bool tcp = options_.endpoint.transport == modbus::Transport::tcp;
+  if (const auto refused = refuse_locked_write(fd, query, length)) return *refused;
   BrakeFault fault;
   if (take_fault(fault)) {
     switch (fault.kind) {
@@ -312,6 +352,7 @@ void BrakeServer::serve_tcp() noexcept {
       bool drop = rc == -1;
       if (rc > 0) drop = handle(c, query, rc) == Outcome::drop_connection;
       if (drop) {
+        unlocked_.erase(c);
         ::close(c);
         it = clients.erase(it);
       } else {
@@ -320,6 +361,7 @@ void BrakeServer::serve_tcp() noexcept {
     }
   }
   for (const int c : clients) ::close(c);
+  unlocked_.clear();
   modbus_set_socket(ctx_, -1);
 }
 
@@ -343,6 +385,34 @@ void BrakeServer::serve_rtu() noexcept {
       modbus_flush(ctx_);
     }
   }
+}
+
+std::uint64_t random_unlock_secret() {
+  std::random_device source;
+  std::uint64_t secret = 0;
+  for (int i = 0; i < 2; ++i) secret = (secret << 32) | source();
+  return secret;
+}
+
+std::string unlock_secret_text(std::uint64_t secret) {
+  char text[19];
+  std::snprintf(text, sizeof text, "0x%016llx", static_cast<unsigned long long>(secret));
+  return text;
+}
+
+std::uint64_t parse_unlock_secret(const std::string& text) {
+  std::size_t used = 0;
+  unsigned long long v = 0;
+  try {
+    v = std::stoull(text, &used, 16);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  const bool digit_first = !text.empty() && std::isxdigit(static_cast<unsigned char>(text[0]));
+  if (!digit_first || used == 0 || used != text.size() || text.size() > 18)
+    throw std::invalid_argument("unlock secret '" + text.substr(0, 40) +
+                                "': expected up to 16 hex digits, e.g. 0x1f2e3d4c5b6a7988");
+  return v;
 }
 
 std::unique_ptr<BrakeServer> start_brake_server(BrakeServerOptions options) {

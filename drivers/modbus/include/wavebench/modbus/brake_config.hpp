@@ -4,7 +4,9 @@
 // (configs/bench/brake-default.yaml shows every key with its default).
 
 #include <chrono>
+#include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <stdexcept>
 #include <string>
 
@@ -23,6 +25,11 @@ struct BrakeLinkConfig {
   std::chrono::milliseconds link_loss_timeout{1000};
   std::chrono::milliseconds reconnect_initial_backoff{100};
   std::chrono::milliseconds reconnect_max_backoff{5000};
+  // A controller that takes writes only after a shared secret (the simulated controller of the
+  // in-process bench): written, high word first, to the four holding registers at
+  // `unlock_address` on every new connection. Unset: nothing written (a real controller).
+  std::optional<std::uint64_t> unlock_secret;
+  int unlock_address = 24;
 };
 
 struct BrakeHeartbeatConfig {

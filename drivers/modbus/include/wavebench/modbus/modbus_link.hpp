@@ -44,6 +44,7 @@ class ModbusLink {
  private:
   std::vector<uint8_t> transact(const std::vector<uint8_t>& pdu);
   [[noreturn]] void fail_transport(int err, const char* during);
+  void unlock(std::uint64_t secret);
 
   BrakeLinkConfig config_;
   _modbus* ctx_ = nullptr;

@@ -11,6 +11,7 @@
 
 #include <cstddef>
 #include <initializer_list>
+#include <limits>
 #include <optional>
 #include <set>
 #include <string>
@@ -24,6 +25,9 @@ namespace wavebench::strict_yaml {
 // Lists longer than this are refused: no shipped config has more than a few dozen items, and
 // a list's length multiplies the work of whatever reads it.
 inline constexpr std::size_t kMaxListItems = 10000;
+
+// The lower end of a range open at zero ("(0, 10 s]"): the smallest value above zero.
+inline constexpr double kAboveZero = std::numeric_limits<double>::denorm_min();
 
 class YamlSection {
  public:
@@ -66,6 +70,11 @@ class YamlSection {
   std::optional<std::string> optional_text(const std::string& key);
   std::string text_or(const std::string& key, const std::string& fallback);
   std::optional<std::vector<std::string>> optional_text_list(const std::string& key);
+  // A name or serial (bench, unit, calibration, case): 1..max_bytes of text without markup or
+  // quoting characters (< > ") or control characters. Labels end up in HTML reports, the
+  // console, CSV headers and the runs index, where such characters are an injection, never a
+  // name.
+  std::optional<std::string> optional_label(const std::string& key, std::size_t max_bytes = 128);
 
   std::optional<bool> optional_boolean(const std::string& key);
   bool boolean_or(const std::string& key, bool fallback);

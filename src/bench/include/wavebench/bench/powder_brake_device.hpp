@@ -10,6 +10,7 @@
 // in-process plant steps the brake by SYNC), so the bench writes the heartbeat register every
 // heartbeat period of bench time (beat_if_due) beside the supervisor's real-time link watch.
 
+#include <atomic>
 #include <memory>
 #include <optional>
 #include <string>
@@ -58,6 +59,13 @@ class PowderBrakeDevice final : public BenchDevice {
   modbus::BrakeClient* client() noexcept { return client_.get(); }
 
   void on_cycle_end(CycleRecord& record) noexcept override;
+  void on_state_change(BenchLifecycle state) noexcept override;
+
+  // The idle watch: the controller's output on while the bench is not active means someone
+  // else energised it (another Modbus master, a front panel). The reason, once per readback
+  // taken after the bench went idle (plus a response time and a poll, so a readback that
+  // straddled the bench's own switch-off does not count); nothing otherwise.
+  std::optional<std::string> energised_while_idle();
 
  private:
   modbus::BrakeClientConfig config_;
@@ -68,6 +76,9 @@ class PowderBrakeDevice final : public BenchDevice {
   double next_beat_s_ = 0;
   bool safe_pending_ = false;
   std::optional<modbus::BrakeReadback> cycle_;
+  std::atomic<BenchLifecycle> state_{BenchLifecycle::kUnconfigured};
+  std::atomic<modbus::BrakeClient::Clock::rep> idle_since_{0};
+  modbus::BrakeClient::Clock::time_point last_reported_{};
 };
 
 }  // namespace wavebench::bench

@@ -35,6 +35,9 @@ TwinRunEstimate estimate_twin_run(const TwinCase& twin);
 inline constexpr double kMaxTwinOutputBytes = 2.0 * 1024 * 1024 * 1024;  // 2 GiB
 inline constexpr double kMaxTwinSteps = 50e6;       // about a minute of the XB-80 case's steps
 inline constexpr double kMaxTwinSimulatedS = 3600;  // t_end plus a sweep's runs
+// A microsecond holds a few steps of the fastest case; shorter is no run (1e-300 s left nothing
+// to analyse and failed without naming --t-end).
+inline constexpr double kMinTwinSimulatedS = 1e-6;
 
 // Throws ConfigError when the estimate is beyond a budget, naming the key to change and the
 // numbers. `t_end_key` is how the user gave t_end ("solver.t_end", or "--t-end" on the CLI).
@@ -42,5 +45,9 @@ void check_twin_run_budget(const TwinCase& twin, const std::string& t_end_key = 
 
 // The same from YAML text; `source` names it in error messages.
 TwinCase parse_twin_case(const std::string& yaml_text, const std::string& source = "<string>");
+
+// Throws ConfigError naming the case's keys behind the first channel of `response` that is
+// not finite (twin_response_check.cpp).
+void check_finite_response(const model::SampledResponse& response);
 
 }  // namespace wavebench::config

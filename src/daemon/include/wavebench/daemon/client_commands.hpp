@@ -44,14 +44,16 @@ int client_runs(const ClientContext& ctx, const RunsFilter& filter);
 // Writes samples.mat, samples.h5, samples.csv or samples.json (format "mat", "hdf5", "csv",
 // "json"; wavebench/exports/sample_export.hpp), results.json and run.json into out_dir
 // (default ./RUN_ID): a new or empty folder, or one an export wrote (export_folder.hpp).
-// The samples come page by page from the daemon's samples API.
+// The samples come page by page from the daemon's samples API. A run still running is refused
+// (exit 2) unless `partial` (--partial); then the files say they are partial (run_export.hpp).
 int client_export(const ClientContext& ctx, const std::string& run_id,
-                  const std::filesystem::path& out_dir, const std::string& format);
+                  const std::filesystem::path& out_dir, const std::string& format,
+                  bool partial = false);
 // The same without a daemon: the run folder runs_dir/run_id of a run store (`wavebench run
 // --out`, the daemon's --runs), its samples.wbs read page by page, status.json as run.json.
 // Reads only; the store's index is not opened (a daemon may be writing it).
 int local_export(const ClientContext& ctx, const std::filesystem::path& runs_dir,
                  const std::string& run_id, const std::filesystem::path& out_dir,
-                 const std::string& format);
+                 const std::string& format, bool partial = false);
 
 }  // namespace wavebench::daemon

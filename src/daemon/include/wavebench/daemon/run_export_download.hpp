@@ -2,14 +2,17 @@
 // A stored run's samples as a download, in the formats of `wavebench export`
 // (wavebench/exports/sample_export.hpp):
 //
-//   GET /api/runs/{id}/export?format=mat|hdf5|csv|json
-//       the file (Content-Disposition: attachment; RUN_ID-samples.mat, ...)
+//   GET /api/runs/{id}/export?format=mat|hdf5|csv|json[&partial=1]
+//       the file (Content-Disposition: attachment; RUN_ID-samples.mat, ...); a running run
+//       only with partial=1 (409 otherwise), and then marked partial in the file
 //
 // Sent in chunks (body_chunks.hpp) with bounded memory and scratch (issue #22: one download of
 // a 254 MB log took 1 GB of RAM and 0.7 GB of /tmp):
-//  - csv and json are made one page of samples per chunk, straight from samples.wbs to the
+//  - csv and json of a finished run are made one page of samples per chunk, straight from
+//  samples.wbs to the
 //    socket: no scratch file, one page in memory;
-//  - mat and hdf5 need a whole file (a MAT variable is written whole, HDF5 seeks): it is built
+//  - mat and hdf5 (and a partial export, which the export library marks) need a whole file (a MAT
+//  variable is written whole, HDF5 seeks): it is built
 //    once in a scratch folder, after checking that the scratch disk has room for it, then
 //    unlinked while open and sent from the open file, so nothing is left behind even when the
 //    client goes away. Their log is bounded by kMaxExportDownloadLogBytes (the scratch bound).

@@ -11,12 +11,18 @@ namespace wavebench::exports {
 
 inline constexpr const char* kExportMarkerFile = ".wavebench-export";
 
-// Why `dir` may not receive an export, or nothing when it may.
-std::optional<std::string> export_folder_refusal(const std::filesystem::path& dir);
+// Why `dir` may not receive run `run_id`'s export, or nothing when it may. An export folder
+// holds one run's export: one that holds another run's is refused (its files are left).
+std::optional<std::string> export_folder_refusal(const std::filesystem::path& dir,
+                                                 const std::string& run_id);
 
-// Creates `dir` (and its parents) and writes the marker naming the run. Throws
-// std::runtime_error when export_folder_refusal() refuses it.
-void prepare_export_folder(const std::filesystem::path& dir, const std::string& run_id);
+// Creates `dir` (and its parents), removes the temporaries of killed exports in it and writes
+// the marker naming the run. Throws std::runtime_error when export_folder_refusal() refuses
+// it. Returns whether the folder was new or empty (an export that fails then removes it).
+bool prepare_export_folder(const std::filesystem::path& dir, const std::string& run_id);
+
+// Removes the marker and `dir` itself when nothing else is in it (a failed first export).
+void remove_export_folder_if_bare(const std::filesystem::path& dir);
 
 // A file being written under a temporary name beside `target`; removed unless commit() ran.
 class PendingFile {

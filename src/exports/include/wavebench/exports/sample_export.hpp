@@ -44,6 +44,8 @@ struct ExportInput {
   nlohmann::json run;      // the run's record (index row / status.json)
   SampleJson sample_json;  // needed for ExportFormat::kJson only
   std::size_t page_records = 20000;
+  // The run was still running when exported (only part of its samples): every format says so.
+  bool partial = false;
 };
 
 struct ExportSummary {
@@ -51,6 +53,7 @@ struct ExportSummary {
   std::uint64_t samples = 0;
   bool torn_tail = false;       // the log ends in a torn record (ignored)
   bool corrupt_record = false;  // a record failed its checksum; exported up to it
+  bool partial = false;         // ExportInput::partial
 };
 
 // Writes dir / samples_file_name(format) atomically (a temporary file beside it, renamed over

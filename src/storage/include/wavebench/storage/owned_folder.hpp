@@ -31,6 +31,14 @@ std::string first_foreign_entry(const std::filesystem::path& dir, const FolderOw
 std::optional<std::string> owned_folder_refusal(const std::filesystem::path& dir,
                                                 const FolderOwner& owner);
 
+// The marker's fields ({"written_by": ..., "run_id": ...}); null when absent or unreadable.
+nlohmann::json read_owner_marker(const std::filesystem::path& dir, const FolderOwner& owner);
+
+// Removes the temporaries a killed writer of `owner` left in `dir`: ".<own file>.tmp<pid>"
+// whose process is gone (the names PendingFile and write_file_atomically use). Nothing else is
+// touched. Returns how many were removed.
+std::size_t remove_stale_temporaries(const std::filesystem::path& dir, const FolderOwner& owner);
+
 // Writes the marker: {"written_by": ..., "format": 1} and `fields`. Throws std::runtime_error
 // naming the file.
 void write_owner_marker(const std::filesystem::path& dir, const FolderOwner& owner,

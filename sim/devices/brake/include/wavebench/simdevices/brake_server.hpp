@@ -15,6 +15,9 @@
 #include <cstdint>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <set>
+#include <string>
 #include <thread>
 
 #include "wavebench/modbus/modbus_endpoint.hpp"
@@ -33,6 +36,10 @@ struct BrakeServerOptions {
   int rtu_fd = -1;  // rtu: serve on this open fd (a pty master; adopted) instead of the device
   int unit_id = 1;
   BrakeControllerSettings controller;
+  // Writes accepted only from a connection that wrote this secret to the unlock registers
+  // (brake_registers::unlock); unset: every write accepted. The daemon's in-process simulated
+  // bench always sets one (a random one, known only to its brake client).
+  std::optional<std::uint64_t> unlock_secret;
   bool real_time = true;
   std::chrono::microseconds step_period{1000};
 };
@@ -71,6 +78,9 @@ class BrakeServer {
   uint64_t connections_accepted() const noexcept { return connections_accepted_; }
   uint64_t most_clients_at_once() const noexcept { return most_clients_at_once_; }
   uint64_t faults_committed() const noexcept { return faults_committed_; }
+  // Writes refused because their connection had not unlocked, and wrong secrets.
+  uint64_t writes_refused() const noexcept { return writes_refused_; }
+  uint64_t wrong_secrets() const noexcept { return wrong_secrets_; }
 
  private:
   enum class Outcome { replied, drop_connection };
@@ -78,6 +88,9 @@ class BrakeServer {
   void serve_rtu() noexcept;
   void run_clock() noexcept;
   Outcome handle(int fd, const uint8_t* query, int length);
+  // The unlock rule (brake_registers::unlock): nothing when the request may go on, else what
+  // was done instead.
+  std::optional<Outcome> refuse_locked_write(int fd, const uint8_t* query, int length);
   bool take_fault(BrakeFault& fault);
   void reply_from_unit(int fd, const uint8_t* query, int unit);
   bool sleep_unless_stopped(std::chrono::milliseconds d);
@@ -109,8 +122,17 @@ class BrakeServer {
   std::atomic<uint64_t> connections_accepted_{0};
   std::atomic<uint64_t> most_clients_at_once_{0};
   std::atomic<uint64_t> faults_committed_{0};
+  std::atomic<uint64_t> writes_refused_{0};
+  std::atomic<uint64_t> wrong_secrets_{0};
+  std::set<int> unlocked_;  // fds of the connections that unlocked (server thread only)
 };
 
 std::unique_ptr<BrakeServer> start_brake_server(BrakeServerOptions options);
+
+// A fresh unlock secret from the system's random source (std::random_device: getrandom).
+std::uint64_t random_unlock_secret();
+// "0x" and 16 hex digits, and back; parse throws std::invalid_argument saying what it expected.
+std::string unlock_secret_text(std::uint64_t secret);
+std::uint64_t parse_unlock_secret(const std::string& text);
 
 }  // namespace wavebench::simdevices

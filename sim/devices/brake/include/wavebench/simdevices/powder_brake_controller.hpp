@@ -27,6 +27,16 @@ inline constexpr int watchdog_ms = 1;
 inline constexpr int heartbeat = 2;
 inline constexpr int setpoint = 10;
 inline constexpr int setpoint_ramp = 12;
+// Unlock (simulated controller only, issue #22): four holding registers 24..27, the 64-bit
+// shared secret high word first, written in one "write multiple registers" (FC 16) by a
+// connection before any other write of it is accepted. A connection that has not unlocked may
+// read; its writes are answered with exception 1 (illegal function) and change nothing. A wrong
+// secret is answered with exception 3 (illegal data value) and the connection is closed, so
+// guessing costs a connection per try. The secret is never stored in the register table, so
+// reading 24..27 gives zeros. Serial (RTU): the line is the connection. Without a secret
+// (BrakeServerOptions::unlock_secret unset) every write is accepted, as a real controller does.
+inline constexpr int unlock = 24;
+inline constexpr int unlock_count = 4;
 // Input registers.
 inline constexpr int status = 0;
 inline constexpr int coil_current = 10;
