@@ -151,7 +151,7 @@ class ConsoleTest(unittest.TestCase):
         self.el('#token').clear()
         self.login()
         self.until(lambda: self.el('#start').is_enabled(), 'start enabled')
-        cookie = self.driver.get_cookie('wb_session')
+        cookie = self.driver.get_cookie(f'wb_session_{self.daemon.port}')
         self.assertTrue(cookie['httpOnly'])
         self.assertEqual(cookie['sameSite'], 'Strict')
         self.assertEqual(self.driver.execute_script('return document.cookie'), '')

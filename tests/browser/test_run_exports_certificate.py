@@ -142,6 +142,19 @@ class RunExportsCertificateTest(ConsolePageTest):
                  self.browser.find_elements(By.CSS_SELECTOR, "#exports-bar a.export")}
         self.assertEqual(set(links), {"mat", "hdf5", "csv", "json"})
 
+        # A run's samples need a login (issue #22): without one the page says so.
+        links["csv"].click()
+        WebDriverWait(self.browser, 30).until(
+            lambda b: "log in" in b.find_element(By.ID, "export-note").text)
+        self.shot("run-page-exports-needs-login")
+        self.browser.get(self.daemon.url + "/login")
+        self.browser.find_element(By.ID, "token").send_keys(self.daemon.token)
+        self.browser.find_element(By.ID, "login").click()
+        WebDriverWait(self.browser, 30).until(lambda b: "/login" not in b.current_url)
+        self.open(f"/run?id={run_id}")
+        links = {a.get_attribute("data-format"): a for a in
+                 self.browser.find_elements(By.CSS_SELECTOR, "#exports-bar a.export")}
+
         # A click saves the file through Chromium's download folder.
         downloads = tempfile.mkdtemp(prefix="wavebench-downloads-")
         try:

@@ -168,12 +168,12 @@ class AccountsApiTest : public DaemonFixture {
     EXPECT_EQ(answer.status, 200) << response_text(answer);
     for (const auto& [key, value] : answer.headers) {
       if (key == "Set-Cookie")
-        return cookie_value(value.substr(0, value.find(';')), kSessionCookie);
+        return cookie_value(value.substr(0, value.find(';')), "wb_session_8470");
     }
     return {};
   }
   ApiRequest as(const std::string& session, ApiRequest r) const {
-    r.cookie = "wb_session=" + session;
+    r.cookie = "wb_session_8470=" + session;
     return r;
   }
 };

@@ -190,13 +190,20 @@ TEST_F(ClientCommandsTest, ExportDownloadFromTheApiIsTheFileTheCommandWrites) {
   const auto csv = run_export_download(daemon_->store(), id,
                                        parse_http_target("/api/runs/" + id + "/export?format=csv"));
   ASSERT_EQ(csv.status, 200);
-  ASSERT_TRUE(csv.raw_body.has_value());
-  EXPECT_EQ(*csv.raw_body, read_file(dir_ / "export" / "samples.csv"));
+  // Sent in chunks (issue #22): the chunks together are the file the command writes.
+  const auto whole = [](const ApiResponse& answer) {
+    std::string body;
+    if (!answer.chunks) return body;
+    while (auto chunk = answer.chunks->next()) body += *chunk;
+    return body;
+  };
+  ASSERT_TRUE(csv.chunks);
+  EXPECT_EQ(whole(csv), read_file(dir_ / "export" / "samples.csv"));
   EXPECT_EQ(csv.content_type, "text/csv; charset=utf-8");
   const auto mat = run_export_download(daemon_->store(), id,
                                        parse_http_target("/api/runs/" + id + "/export?format=mat"));
-  ASSERT_TRUE(mat.raw_body.has_value());
-  EXPECT_EQ(mat.raw_body->substr(0, 19), "MATLAB 5.0 MAT-file");
+  ASSERT_TRUE(mat.chunks);
+  EXPECT_EQ(whole(mat).substr(0, 19), "MATLAB 5.0 MAT-file");
   // Through the routes: a bad format is 400 naming the key and the value.
   const auto bad = client().get("/api/runs/" + id + "/export?format=xlsx");
   EXPECT_EQ(bad.status, 400);

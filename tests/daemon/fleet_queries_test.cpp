@@ -63,7 +63,9 @@ TEST_F(FleetQueriesTest, LimitsOutOfOrderAndCountsOutOfRangeAreRefused) {
 }
 
 TEST_F(FleetQueriesTest, AnEmptyStoreAnswersNoPoints) {
-  const auto r = get("/api/fleet/trend?figure=static_te_p2p&model=CSG-20&usl=7");
+  // A trend takes no spec limits (the spc does): usl is refused, not silently ignored.
+  EXPECT_EQ(get("/api/fleet/trend?figure=static_te_p2p&model=CSG-20&usl=7").status, 400);
+  const auto r = get("/api/fleet/trend?figure=static_te_p2p&model=CSG-20");
   ASSERT_EQ(r.status, 200) << r.body.dump();
   EXPECT_TRUE(r.body["points"].empty());
   const auto s = get("/api/fleet/spc?figure=static_te_p2p&model=CSG-20&lsl=0&usl=7");

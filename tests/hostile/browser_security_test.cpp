@@ -39,7 +39,7 @@ class BrowserSecurityTest : public DaemonFixture {
         EXPECT_NE(value.find("SameSite=Strict"), std::string::npos);
         EXPECT_NE(value.find("Path=/"), std::string::npos);
         EXPECT_NE(value.find("Max-Age=1800"), std::string::npos);  // the idle timeout
-        return cookie_value(value.substr(0, value.find(';')), kSessionCookie);
+        return cookie_value(value.substr(0, value.find(';')), "wb_session_8470");
       }
     }
     ADD_FAILURE() << "no Set-Cookie";
@@ -47,7 +47,7 @@ class BrowserSecurityTest : public DaemonFixture {
   }
   ApiRequest stop_with(const std::string& session) const {
     auto r = request("POST", "/api/stop");
-    r.cookie = "other=1; wb_session=" + session;
+    r.cookie = "other=1; wb_session_8470=" + session;
     return r;
   }
   // A start: unlike the stop (issue #21: needs no session), it needs a live one.
@@ -76,7 +76,7 @@ TEST_F(BrowserSecurityTest, LoginNeedsTheTokenAndGivesA256BitHttpOnlyCookie) {
   EXPECT_NE(id, login());     // each login its own session
   auto check = request("GET", "/api/session");
   EXPECT_EQ(handle(check).body["authenticated"], false);
-  check.cookie = "wb_session=" + id;
+  check.cookie = "wb_session_8470=" + id;
   EXPECT_EQ(handle(check).body["authenticated"], true);
 }
 
@@ -84,7 +84,7 @@ TEST_F(BrowserSecurityTest, ASessionWithTheConsoleHeaderMayStopAndLogoutEndsIt) 
   const auto id = login();
   EXPECT_EQ(handle(stop_with(id)).status, 200);
   auto logout = request("DELETE", "/api/session");
-  logout.cookie = "wb_session=" + id;
+  logout.cookie = "wb_session_8470=" + id;
   const auto out = handle(logout);
   EXPECT_EQ(out.status, 200);
   ASSERT_FALSE(out.headers.empty());

@@ -43,8 +43,22 @@ bool same_origin(std::string_view origin, std::string_view host) {
          equal_ignoring_case(origin.substr(scheme.size()), host);
 }
 
-std::string session_cookie(std::string_view id, long long max_age_s) {
-  return std::string(kSessionCookie) + "=" + std::string(id) +
+std::string session_cookie_name(std::string_view host) {
+  const auto colon = host.rfind(':');
+  const auto bracket = host.rfind(']');
+  if (colon == std::string_view::npos || (bracket != std::string_view::npos && bracket > colon)) {
+    return std::string(kSessionCookie) + "_80";
+  }
+  const auto port = host.substr(colon + 1);
+  const bool digits =
+      !port.empty() && port.size() <= 5 &&
+      std::all_of(port.begin(), port.end(), [](char c) { return c >= '0' && c <= '9'; });
+  return digits ? std::string(kSessionCookie) + "_" + std::string(port)
+                : std::string(kSessionCookie);
+}
+
+std::string session_cookie(std::string_view name, std::string_view id, long long max_age_s) {
+  return std::string(name) + "=" + std::string(id) +
          "; HttpOnly; SameSite=Strict; Path=/; Max-Age=" + std::to_string(max_age_s);
 }
 

@@ -57,6 +57,9 @@ int with_client(const ClientContext& ctx, bool needs_token, Body body) {
   try {
     DaemonClient client(ctx.daemon_url, needs_token ? required_token(ctx) : token_or_empty(ctx),
                         ctx.timeout, ctx.connect_timeout);
+    client.retry_busy(ctx.busy_wait, [err = ctx.err](const std::string& what) {
+      *err << "wavebench: " << what << "\n";
+    });
     return body(client);
   } catch (const std::invalid_argument& e) {
     *ctx.err << "wavebench: " << e.what() << "\n";

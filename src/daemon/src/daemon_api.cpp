@@ -1,5 +1,7 @@
 #include "wavebench/daemon/daemon_api.hpp"
 
+#include <spdlog/spdlog.h>
+
 #include <charconv>
 #include <chrono>
 #include <ctime>
@@ -72,10 +74,17 @@ std::string utc_now_text() {
   return text;
 }
 
+// A 503 that says when to come back: the console and the CLI wait that long and retry.
+ApiResponse busy(const std::string& detail, int retry_after_s) {
+  auto answer = api_error(503, "busy", detail);
+  answer.headers.emplace_back("Retry-After", std::to_string(retry_after_s));
+  return answer;
+}
+
 ApiResponse busy_reading() {
-  return api_error(503, "busy",
-                   std::to_string(DaemonApi::kMaxConcurrentReads) +
-                       " reads of run data are in progress; retry shortly");
+  return busy(std::to_string(DaemonApi::kMaxConcurrentReads) +
+                  " reads of run data are in progress; retry shortly",
+              1);
 }
 
 nlohmann::json description_json(const bench::BenchDescription& d) {
@@ -169,6 +178,7 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       accounts_(std::make_shared<const Accounts>()),
       throttle_(std::make_shared<LoginThrottle>()),
       live_clients_(std::make_shared<LiveStreamClients>(kMaxLiveStreams)),
+      downloads_(std::make_shared<CountedSlots>(kMaxDownloads)),
       instance_id_(random_hex_token().substr(0, 16)),
       started_at_(utc_now_text()) {}
 
@@ -309,7 +319,18 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
       if (!get) return method_not_allowed("GET");
       if (!looks_like_run_id(seg[2]))
         return api_error(404, "not found", "run '" + seg[2] + "' is not a run id");
-      return costly([&] { return run_export_download(store_, seg[2], target); });
+      if (!has_login(request)) {
+        return api_error(401, "unauthorized",
+                         "a run's samples need a login: log in at /login (the console sends its "
+                         "session), or send 'Authorization: Bearer <token>' (the CLI)");
+      }
+      auto slot = downloads_->admit();
+      if (!slot) {
+        return busy(
+            std::to_string(kMaxDownloads) + " downloads are in progress; retry when one has ended",
+            5);
+      }
+      return costly([&] { return run_export_download(store_, seg[2], target, std::move(slot)); });
     }
     if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
       if (!get) return method_not_allowed("GET");
@@ -329,6 +350,12 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
   return api_error(404, "not found", "no resource at " + target.path);
 }
 
+bool DaemonApi::has_login(const ApiRequest& request) const {
+  if (bearer_matches(request.authorization, token_)) return true;
+  const auto id = cookie_value(request.cookie, session_cookie_name(request.host));
+  return !id.empty() && sessions_->use(id).has_value();
+}
+
 std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request,
                                                     SessionIdentity* caller) const {
   if (request.has_origin && !same_origin(request.origin, request.host)) {
@@ -340,7 +367,7 @@ std::optional<ApiResponse> DaemonApi::refuse_change(const ApiRequest& request,
     if (caller) *caller = SessionIdentity{};  // the token: automation, acts as an engineer
     return std::nullopt;
   }
-  const auto id = cookie_value(request.cookie, kSessionCookie);
+  const auto id = cookie_value(request.cookie, session_cookie_name(request.host));
   const auto who = id.empty() ? std::nullopt : sessions_->use(id);
   if (!who) {
     return api_error(401, "unauthorized",
@@ -384,7 +411,7 @@ std::optional<ApiResponse> DaemonApi::refuse_stop(const ApiRequest& request) con
 }
 
 ApiResponse DaemonApi::session(const ApiRequest& request) const {
-  const auto id = cookie_value(request.cookie, kSessionCookie);
+  const auto id = cookie_value(request.cookie, session_cookie_name(request.host));
   if (request.method == "GET") {
     const auto who = id.empty() ? std::nullopt : sessions_->use(id);
     ApiResponse answer{200, {{"authenticated", who.has_value()}}};
@@ -393,7 +420,8 @@ ApiResponse DaemonApi::session(const ApiRequest& request) const {
     answer.body["accounts"] = !accounts_->empty();  // whether the login page asks for a name
     // Renewed on every check: an open console keeps its session.
     if (who)
-      answer.headers.emplace_back("Set-Cookie", session_cookie(id, sessions_->lifetime().count()));
+      answer.headers.emplace_back("Set-Cookie", session_cookie(session_cookie_name(request.host),
+                                                               id, sessions_->lifetime().count()));
     return answer;
   }
   if (request.method != "POST" && request.method != "DELETE") {
@@ -411,7 +439,8 @@ ApiResponse DaemonApi::session(const ApiRequest& request) const {
   if (request.method == "DELETE") {
     if (!id.empty()) sessions_->remove(id);
     ApiResponse answer{200, {{"authenticated", false}}};
-    answer.headers.emplace_back("Set-Cookie", session_cookie("", 0));
+    answer.headers.emplace_back("Set-Cookie",
+                                session_cookie(session_cookie_name(request.host), "", 0));
     return answer;
   }
   return login(request);
@@ -452,7 +481,14 @@ ApiResponse DaemonApi::login(const ApiRequest& request) const {
   if (name) keys.push_back("name:" + *name);
   std::chrono::seconds wait{0};
   for (const auto& key : keys) wait = std::max(wait, throttle_->wait(key));
+  // The account name is what the client sent: printable_text() keeps a log line one line of
+  // printable text. The password is never logged.
+  const auto account_text = name ? "account '" + printable_text(*name, 64) + "'" : "the token";
+  const auto client_text = request.client.empty() ? std::string("an unknown client")
+                                                  : printable_text(request.client, 64);
   if (wait.count() > 0) {
+    spdlog::warn("login refused for {} from {}: throttled, {} s to wait", account_text, client_text,
+                 wait.count());
     auto answer = api_error(429, "too many requests",
                             "too many failed logins: retry in " + std::to_string(wait.count()) +
                                 " s (each further failure doubles the wait)");
@@ -474,6 +510,9 @@ ApiResponse DaemonApi::login(const ApiRequest& request) const {
   }
   if (!ok) {
     for (const auto& key : keys) throttle_->failed(key);
+    spdlog::warn(
+        "login failed for {} from {}: {}", account_text, client_text,
+        name ? (accounts_->find(*name) ? "wrong password" : "no such account") : "wrong token");
     return api_error(401, "unauthorized",
                      name ? "name or password: not an account of this daemon (its --accounts file)"
                           : "token: not the daemon's token (see its --token-file)");
@@ -485,7 +524,8 @@ ApiResponse DaemonApi::login(const ApiRequest& request) const {
        {"account", who.account.empty() ? nlohmann::json(nullptr) : nlohmann::json(who.account)},
        {"role", role_name(who.role)}}};
   answer.headers.emplace_back(
-      "Set-Cookie", session_cookie(sessions_->create(who), sessions_->lifetime().count()));
+      "Set-Cookie", session_cookie(session_cookie_name(request.host), sessions_->create(who),
+                                   sessions_->lifetime().count()));
   return answer;
 }
 

@@ -4,6 +4,7 @@
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/beast/core.hpp>
 #include <boost/beast/http.hpp>
+#include <thread>
 
 namespace wavebench::daemon {
 
@@ -61,7 +62,26 @@ DaemonClient::DaemonClient(const std::string& url, std::string token,
       connect_timeout_(connect_timeout) {}
 
 DaemonReply DaemonClient::get(const std::string& target) const {
-  return request(false, target, "");
+  const auto until = std::chrono::steady_clock::now() + busy_for_;
+  auto pause = std::chrono::milliseconds(250);
+  for (;;) {
+    auto reply = request(false, target, "");
+    if (reply.status != 503 || busy_for_.count() <= 0) return reply;
+    const auto now = std::chrono::steady_clock::now();
+    auto wait =
+        reply.retry_after_s >= 0 ? std::chrono::milliseconds(reply.retry_after_s * 1000) : pause;
+    wait = std::max(wait, std::chrono::milliseconds(100));
+    if (now + wait > until) return reply;  // waited long enough: the caller reports the 503
+    if (busy_notice_) {
+      busy_notice_(
+          "the daemon is busy (" + reply.error_text() + "); retrying " + target + " in " +
+          std::to_string(wait.count()) + " ms, for at most " +
+          std::to_string(std::chrono::duration_cast<std::chrono::seconds>(until - now).count()) +
+          " s more");
+    }
+    std::this_thread::sleep_for(wait);
+    pause = std::min(pause * 2, std::chrono::milliseconds(4000));
+  }
 }
 
 DaemonReply DaemonClient::post(const std::string& target, const nlohmann::json& body) const {
@@ -130,6 +150,11 @@ DaemonReply DaemonClient::request(bool post, const std::string& target,
   }
   DaemonReply reply;
   reply.status = static_cast<int>(parser.get().result_int());
+  const auto retry_after = parser.get()[http::field::retry_after];
+  if (!retry_after.empty() && retry_after.size() <= 4 &&
+      retry_after.find_first_not_of("0123456789") == std::string_view::npos) {
+    reply.retry_after_s = std::stoi(std::string(retry_after));  // seconds; an HTTP date: none
+  }
   const auto& text = parser.get().body();
   reply.body = nlohmann::json::parse(text, nullptr, false);
   // Every answer of the daemon, errors included, is a JSON object: anything else is not it.

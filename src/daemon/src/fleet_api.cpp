@@ -1,14 +1,19 @@
 #include "wavebench/daemon/fleet_api.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <charconv>
 #include <cmath>
+#include <map>
 #include <memory>
 #include <optional>
 #include <stdexcept>
+#include <vector>
 
 #include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/postgres_results_store.hpp"
 #include "wavebench/fleet/sqlite_results_store.hpp"
+#include "wavebench/fleet/utc_time_text.hpp"
 
 namespace wavebench::daemon {
 
@@ -36,6 +41,58 @@ std::optional<double> number(const HttpTarget& t, const std::string& key) {
   return v;
 }
 
+// One of `allowed` (compared without case; the answer has the allowed spelling), or nothing.
+std::optional<std::string> choice(const HttpTarget& t, const std::string& key,
+                                  const std::vector<std::string>& allowed) {
+  const auto value = text(t, key);
+  if (!value) return std::nullopt;
+  const auto same = [&](const std::string& a) {
+    return std::equal(a.begin(), a.end(), value->begin(), value->end(), [](char x, char y) {
+      return std::tolower(static_cast<unsigned char>(x)) ==
+             std::tolower(static_cast<unsigned char>(y));
+    });
+  };
+  const auto it = std::find_if(allowed.begin(), allowed.end(), same);
+  if (it != allowed.end()) return *it;
+  std::string list;
+  for (std::size_t i = 0; i < allowed.size(); ++i) {
+    list += (i == 0 ? "" : i + 1 == allowed.size() ? " or " : ", ") + allowed[i];
+  }
+  throw BadQuery(key + ": got '" + *value + "', expected " + list);
+}
+
+// The keys each query takes: any other is refused, so a typo never returns an unfiltered answer.
+const std::map<std::string, std::vector<std::string>>& known_keys() {
+  static const std::map<std::string, std::vector<std::string>> keys = {
+      {"figures", {}},
+      {"runs", {"model", "bench", "unit", "procedure", "verdict", "from", "to", "limit"}},
+      {"trend", {"figure", "model", "bench", "direction", "load", "from", "to", "last"}},
+      {"spc",
+       {"figure", "model", "bench", "direction", "load", "from", "to", "last", "lsl", "usl"}},
+  };
+  return keys;
+}
+
+void refuse_unknown_keys(const HttpTarget& t, const std::vector<std::string>& keys) {
+  std::string unknown;
+  for (const auto& [key, value] : t.query) {
+    if (std::find(keys.begin(), keys.end(), key) == keys.end()) {
+      unknown += (unknown.empty() ? "'" : ", '") + key + "'";
+    }
+  }
+  if (unknown.empty()) return;
+  std::string list;
+  for (const auto& k : keys) list += (list.empty() ? "" : ", ") + k;
+  throw BadQuery("unknown parameter " + unknown + " for /api/fleet/" + t.segments.at(2) +
+                 "; expected " + (list.empty() ? std::string("none") : list));
+}
+
+// Checked before a store is opened (the store canonicalises them again): a bad time is 400,
+// not an unreachable store's 503.
+void check_utc_time(const HttpTarget& t, const std::string& key) {
+  if (const auto value = text(t, key)) (void)fleet::canonical_utc(*value, key);
+}
+
 int count(const HttpTarget& t, const std::string& key, int fallback, int most) {
   const auto value = number(t, key);
   if (!value) return fallback;
@@ -55,7 +112,7 @@ fleet::FigureQuery figure_query(const HttpTarget& t) {
   q.figure = *figure;
   q.gear_model = *model;
   q.bench = text(t, "bench");
-  q.direction = text(t, "direction");
+  q.direction = choice(t, "direction", {"forward", "reverse"});
   q.load_nm = number(t, "load");
   q.from = text(t, "from");
   q.to = text(t, "to");
@@ -84,7 +141,7 @@ ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
     q.bench = text(t, "bench");
     q.unit_serial_prefix = text(t, "unit");  // "0042" finds "0042-A", as the history does
     q.procedure = text(t, "procedure");
-    q.verdict = text(t, "verdict");
+    q.verdict = choice(t, "verdict", {"PASS", "FAIL", "UNDECIDED"});
     q.from = text(t, "from");
     q.to = text(t, "to");
     q.limit = count(t, "limit", 50, 10000);
@@ -115,7 +172,20 @@ ApiResponse answer(fleet::ResultsStore& store, const HttpTarget& t) {
 FleetQueries make_fleet_queries(fleet::ResultsConfig config, std::filesystem::path own_index) {
   return [config = std::move(config),
           own_index = std::move(own_index)](const HttpTarget& target) -> ApiResponse {
-    if (target.segments.size() == 3 && target.segments[2] == "figures") return figures();
+    if (target.segments.size() != 3 || !known_keys().contains(target.segments[2])) {
+      return api_error(404, "not found",
+                       "no resource at " + target.path + "; expected runs, trend, spc or figures");
+    }
+    try {
+      refuse_unknown_keys(target, known_keys().at(target.segments[2]));
+      if (target.segments[2] != "figures") {
+        check_utc_time(target, "from");
+        check_utc_time(target, "to");
+      }
+    } catch (const std::invalid_argument& e) {
+      return api_error(400, "bad request", e.what());
+    }
+    if (target.segments[2] == "figures") return figures();
     std::unique_ptr<fleet::ResultsStore> store;
     try {
       if (config.shared()) {

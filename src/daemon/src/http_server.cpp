@@ -1,7 +1,10 @@
 #include "wavebench/daemon/http_server.hpp"
 
+#include <linux/sockios.h>
 #include <spdlog/spdlog.h>
+#include <sys/ioctl.h>
 
+#include <atomic>
 #include <boost/asio/ip/tcp.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/asio/strand.hpp>
@@ -24,7 +27,20 @@ namespace {
 
 constexpr auto kIdleTimeout = std::chrono::seconds(60);
 
+// A download's client must take each chunk within this; one that stops reading is dropped.
+constexpr auto kChunkWriteDeadline = std::chrono::seconds(30);
+
+// An event stream's socket keeps little unsent data: a client that stops reading fills it in
+// seconds, not the minutes a socket buffer grown to megabytes would take.
+constexpr int kEventSendBuffer = 64 << 10;
+
+std::atomic<std::uint64_t> g_stalled_readers_dropped{0};
+
 }  // namespace
+
+std::uint64_t stalled_event_readers_dropped() {
+  return g_stalled_readers_dropped.load();
+}
 
 ApiResponse parse_error_answer(beast::error_code ec) {
   if (ec == http::error::body_limit) {
@@ -96,6 +112,10 @@ class Session : public std::enable_shared_from_this<Session> {
       stream_events(std::move(response), version);
       return;
     }
+    if (response.chunks) {
+      send_chunks(std::move(response), version);
+      return;
+    }
     auto message = std::make_shared<http::response<http::string_body>>(
         static_cast<http::status>(response.status), version);
     message->set(http::field::server, "wavebenchd");
@@ -130,6 +150,8 @@ class Session : public std::enable_shared_from_this<Session> {
     for (const auto& [name, value] : response.headers) header->set(name, value);
     header->keep_alive(false);
     auto serializer = std::make_shared<http::response_serializer<http::empty_body>>(*header);
+    beast::error_code ignored;
+    stream_.socket().set_option(net::socket_base::send_buffer_size(kEventSendBuffer), ignored);
     stream_.expires_never();
     http::async_write_header(
         stream_, *serializer,
@@ -147,15 +169,104 @@ class Session : public std::enable_shared_from_this<Session> {
       auto event = self->events_->next();
       if (!event) return self->close();
       if (event->empty()) return self->next_event();
+      if (self->reader_stalled()) return self->drop_stalled_reader();
       self->event_ = std::move(*event);
       // A client that stops reading loses its slot instead of holding it for ever.
-      self->stream_.expires_after(kIdleTimeout);
+      self->stream_.expires_after(kStalledReaderLimit);
       net::async_write(self->stream_, net::buffer(self->event_),
                        [self](beast::error_code write_ec, std::size_t) {
+                         if (write_ec == beast::error::timeout) return self->drop_stalled_reader();
                          if (write_ec) return self->close();
                          self->next_event();
                        });
     });
+  }
+
+  // Its queue full or unacknowledged for kStalledReaderLimit: the client is not reading.
+  void drop_stalled_reader() {
+    const auto dropped = ++g_stalled_readers_dropped;
+    spdlog::warn(
+        "live stream: the client read nothing for {} s; dropped, its slot freed "
+        "({} dropped since start)",
+        std::chrono::duration_cast<std::chrono::seconds>(kStalledReaderLimit).count(), dropped);
+    events_.reset();  // frees the slot now, not when the socket has drained
+    beast::error_code ignored;
+    stream_.socket().close(ignored);
+  }
+
+  // Whether the client has left sent data unacknowledged (its receive window closed: it is not
+  // reading) at every check for kStalledReaderLimit. A client that reads acknowledges within
+  // a round trip, so its queue is empty again between two events.
+  bool reader_stalled() {
+    int queued = 0;
+    if (::ioctl(stream_.socket().native_handle(), SIOCOUTQ, &queued) != 0 || queued <= 0) {
+      stalled_since_.reset();
+      return false;
+    }
+    const auto now = std::chrono::steady_clock::now();
+    if (!stalled_since_) stalled_since_ = now;
+    return now - *stalled_since_ >= kStalledReaderLimit;
+  }
+
+  // A body made chunk by chunk (body_chunks.hpp): one chunk in memory at a time, each written
+  // within kChunkWriteDeadline.
+  void send_chunks(ApiResponse response, unsigned version) {
+    chunks_ = std::move(response.chunks);
+    auto header = std::make_shared<http::response<http::empty_body>>(
+        static_cast<http::status>(response.status), version);
+    header->set(http::field::server, "wavebenchd");
+    header->set(http::field::content_type, response.content_type);
+    header->set(http::field::cache_control, "no-store");
+    header->set("X-Content-Type-Options", "nosniff");
+    for (const auto& [name, value] : response.headers) header->set(name, value);
+    header->chunked(true);
+    header->keep_alive(false);
+    auto serializer = std::make_shared<http::response_serializer<http::empty_body>>(*header);
+    stream_.expires_after(kChunkWriteDeadline);
+    http::async_write_header(
+        stream_, *serializer,
+        [self = shared_from_this(), header, serializer](beast::error_code ec, std::size_t) {
+          if (ec) return self->end_chunks(false);
+          self->next_chunk();
+        });
+  }
+
+  void next_chunk() {
+    std::optional<std::string> chunk;
+    try {
+      chunk = chunks_->next();
+    } catch (const std::exception& e) {
+      spdlog::warn("download cut short: {}", printable_text(e.what()));
+      return end_chunks(false);
+    }
+    stream_.expires_after(kChunkWriteDeadline);
+    if (!chunk) {
+      net::async_write(stream_, http::make_chunk_last(),
+                       [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                         self->end_chunks(!ec);
+                       });
+      return;
+    }
+    chunk_ = std::move(*chunk);
+    net::async_write(stream_, http::make_chunk(net::buffer(chunk_)),
+                     [self = shared_from_this()](beast::error_code ec, std::size_t) {
+                       if (ec) return self->end_chunks(false);
+                       self->next_chunk();
+                     });
+  }
+
+  // Frees the body (its download slot, its scratch file) at once. A body that failed or whose
+  // client went away ends with a reset, never the last chunk: the client sees it incomplete.
+  void end_chunks(bool complete) {
+    chunks_.reset();
+    chunk_.clear();
+    chunk_.shrink_to_fit();
+    beast::error_code ignored;
+    if (complete) {
+      stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+    } else {
+      stream_.socket().close(ignored);
+    }
   }
 
   void close() {
@@ -170,6 +281,9 @@ class Session : public std::enable_shared_from_this<Session> {
   std::shared_ptr<EventStream> events_;
   net::steady_timer timer_{stream_.get_executor()};
   std::string event_;
+  std::optional<std::chrono::steady_clock::time_point> stalled_since_;
+  std::shared_ptr<BodyChunks> chunks_;
+  std::string chunk_;
 };
 
 }  // namespace

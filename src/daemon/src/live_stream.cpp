@@ -61,16 +61,6 @@ LiveStreamParams live_stream_params(const HttpTarget& target) {
   return p;
 }
 
-std::shared_ptr<void> LiveStreamClients::admit() {
-  auto count = count_;
-  if (count->fetch_add(1) >= max_) {
-    count->fetch_sub(1);
-    return nullptr;
-  }
-  // Not null (a null shared_ptr tests false even with a deleter); the deleter only counts.
-  return std::shared_ptr<void>(count.get(), [count](void*) { count->fetch_sub(1); });
-}
-
 LiveStreamFrames::LiveStreamFrames(const LiveSampleBuffer& live,
                                    std::function<nlohmann::json()> status, LiveStreamParams params,
                                    std::shared_ptr<void> slot)

@@ -3,7 +3,7 @@
 #include <charconv>
 #include <cmath>
 
-#include "utc_time_text.hpp"
+#include "wavebench/fleet/utc_time_text.hpp"
 #include "wavebench/storage/like_prefix.hpp"
 
 namespace wavebench::fleet {

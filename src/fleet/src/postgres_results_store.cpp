@@ -6,8 +6,8 @@
 #include "fleet_sql.hpp"
 #include "pg_connection.hpp"
 #include "schema_migrations.hpp"
-#include "utc_time_text.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
+#include "wavebench/fleet/utc_time_text.hpp"
 
 namespace wavebench::fleet {
 

@@ -9,8 +9,8 @@
 #include "figure_query_rules.hpp"
 #include "fleet_sql.hpp"
 #include "sqlite_statement.hpp"
-#include "utc_time_text.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
+#include "wavebench/fleet/utc_time_text.hpp"
 
 namespace wavebench::fleet {
 

@@ -1,4 +1,4 @@
-#include "utc_time_text.hpp"
+#include "wavebench/fleet/utc_time_text.hpp"
 
 #include <cctype>
 #include <cstdio>
@@ -38,6 +38,9 @@ std::string canonical_utc(const std::string& text, const std::string& key) {
                                  "', expected an ISO 8601 date or time (2026-11-24, "
                                  "2026-11-24T10:15:00Z)");
   };
+  const auto refuse_because = [&](const std::string& expected) {
+    return std::invalid_argument(key + ": got '" + text + "', expected " + expected);
+  };
   std::size_t at = 0;
   int year = 0, month = 0, day = 0, hour = 0, minute = 0, second = 0;
   long micros = 0;
@@ -71,6 +74,8 @@ std::string canonical_utc(const std::string& text, const std::string& key) {
     if (take(text, at, ':') || (at < text.size() && text[at] != 'Z')) {
       if (!digits(text, at, 2, om)) throw refuse();
     }
+    // RFC 3339: an offset is at most 23:59 either way ("+24:00" names no zone).
+    if (oh > 23 || om > 59) throw refuse_because("an offset from -23:59 to +23:59");
     offset_minutes = sign * (oh * 60 + om);
   } else {
     take(text, at, 'Z');
@@ -94,6 +99,22 @@ std::string canonical_utc(const std::string& text, const std::string& key) {
   const std::time_t t = ::timegm(&tm) - static_cast<std::time_t>(offset_minutes) * 60;
   std::tm utc{};
   gmtime_r(&t, &utc);
+  if (second == 60) {
+    // A leap second is inserted only as 23:59:60 UTC at the end of June or December (RFC 3339
+    // 5.7); timegm() carried it into the next minute, so that minute is 00:00 on the 1st of July
+    // or January. It is kept as the last microsecond of 23:59:59, so it sorts where it happened.
+    if (!(utc.tm_hour == 0 && utc.tm_min == 0 && utc.tm_sec == 0 && utc.tm_mday == 1 &&
+          (utc.tm_mon == 0 || utc.tm_mon == 6))) {
+      throw refuse_because("a leap second (:60) only at 23:59:60 UTC on June 30 or December 31");
+    }
+    const std::time_t before = t - 1;
+    gmtime_r(&before, &utc);
+    micros = 999999;
+  }
+  // Text of another width would not sort as the times do ("10000-..." before "2026-...").
+  if (utc.tm_year + 1900 < 1000 || utc.tm_year + 1900 > 9999) {
+    throw refuse_because("a time from year 1000 to 9999 in UTC");
+  }
   char buf[40];
   const auto n = std::strftime(buf, sizeof buf, "%Y-%m-%dT%H:%M:%S", &utc);
   std::snprintf(buf + n, sizeof buf - n, ".%06ldZ", micros);

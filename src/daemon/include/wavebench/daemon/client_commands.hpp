@@ -21,6 +21,8 @@ struct ClientContext {
   std::chrono::milliseconds poll_interval{200};
   std::chrono::milliseconds timeout{45000};  // per request, answer included
   std::chrono::milliseconds connect_timeout{5000};
+  // How long a read answered 503 "busy" is retried (DaemonClient::retry_busy); 0: not at all.
+  std::chrono::milliseconds busy_wait{120000};
 };
 
 int client_status(const ClientContext& ctx);

@@ -11,7 +11,8 @@
 //                                             (see refuse_stop below)
 //   POST /api/reset                           clear a fault / reconnect        (engineer)
 //   POST /api/manual/{jog|stop|goto|brake|servo|alive}   the manual panel (manual_api.hpp) (change)
-//   POST /api/session   {name, password} | {token}   log in: Set-Cookie wb_session (HttpOnly,
+//   POST /api/session   {name, password} | {token}   log in: Set-Cookie wb_session_<port>
+//   (HttpOnly,
 //                                             Strict); failed logins rate-limited (429)
 //   GET  /api/session                         {"authenticated", "account", "role"}; renews it
 //   DELETE /api/session                       log out
@@ -25,7 +26,9 @@
 //   GET  /api/runs/{id}/samples?from=&limit=  a page of samples.wbs (reads only that page;
 //                                             page_gaps counts gaps within it)
 //   GET  /api/runs/{id}/export?format=mat|hdf5|csv|json   the samples as a file to download
-//                                             (run_export_download.hpp)
+//                                             (run_export_download.hpp), sent in chunks;
+//                                             needs a login (session or token); at most
+//                                             kMaxDownloads at once, else 503 + Retry-After
 //   GET  /api/runs/{id}/trace?channels=&from_s=&to_s=&columns=   min/max per column (run_trace.hpp)
 //   GET  /api/runs/{id}/twin?from_s=&to_s=&columns=              the twin's curves (run_trace.hpp)
 //   GET  /api/live?since=&limit=              latest samples
@@ -43,7 +46,7 @@
 // A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
 // Reads that cost in proportion to the data (sample pages, run details) run on
 // kMaxConcurrentReads low-priority threads (low_priority_reads.hpp); when all are busy the
-// others get 503 at once, so status, abort and stop are always answered.
+// others get 503 at once with Retry-After, so status, abort and stop are always answered.
 
 #include <chrono>
 #include <filesystem>
@@ -57,6 +60,7 @@
 
 #include "wavebench/daemon/accounts.hpp"
 #include "wavebench/daemon/bench_thread.hpp"
+#include "wavebench/daemon/body_chunks.hpp"
 #include "wavebench/daemon/event_stream.hpp"
 #include "wavebench/daemon/host_check.hpp"
 #include "wavebench/daemon/http_target.hpp"
@@ -93,12 +97,16 @@ struct ApiResponse {
   // A server-sent event stream (event_stream.hpp): the header goes out with content_type, then
   // the stream's events until the client closes.
   std::shared_ptr<EventStream> stream;
+  // A body sent in chunks as it is made (body_chunks.hpp), after the header with content_type
+  // and headers; the connection closes after it.
+  std::shared_ptr<BodyChunks> chunks;
 };
 
 class LowPriorityReads;
 class ConsoleFiles;
 class LoginThrottle;
-class LiveStreamClients;
+class CountedSlots;
+using LiveStreamClients = CountedSlots;
 
 // What /api/status names as the software serving it.
 struct SoftwareIdentity {
@@ -117,6 +125,9 @@ class DaemonApi {
  public:
   static constexpr int kMaxConcurrentReads = 2;
   static constexpr std::size_t kMaxLiveStreams = 8;
+  // Export downloads sent at once; more get 503 with Retry-After (each holds a connection and,
+  // for mat/hdf5, a scratch file until its client has read it).
+  static constexpr std::size_t kMaxDownloads = 2;
   static constexpr std::size_t kMaxLoginBody = 4096;
 
   // `specs_dir`: the product specs a run may name (empty: runs::default_specs_dir()).
@@ -161,6 +172,8 @@ class DaemonApi {
   // The stop's own, looser rule (why it is safe: the comment in daemon_api.cpp).
   std::optional<ApiResponse> refuse_stop(const ApiRequest& request) const;
   ApiResponse login(const ApiRequest& request) const;
+  // The token, or a live session's cookie (which is renewed).
+  bool has_login(const ApiRequest& request) const;
   nlohmann::json status_json() const;
 
   BenchThread& bench_;
@@ -176,6 +189,7 @@ class DaemonApi {
   std::shared_ptr<const Accounts> accounts_;
   std::shared_ptr<LoginThrottle> throttle_;
   std::shared_ptr<LiveStreamClients> live_clients_;
+  std::shared_ptr<CountedSlots> downloads_;
   // Random per daemon start (GET /api/status "instance"): a console that sees it change knows
   // the daemon restarted, and with it every session ended.
   std::string instance_id_;

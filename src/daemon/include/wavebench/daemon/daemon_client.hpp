@@ -3,6 +3,7 @@
 // Boost.Beast, JSON in and out.
 
 #include <chrono>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <stdexcept>
 #include <string>
@@ -27,7 +28,8 @@ DaemonEndpoint parse_daemon_url(const std::string& url);
 
 struct DaemonReply {
   int status = 0;
-  nlohmann::json body;  // null when the body is not JSON
+  nlohmann::json body;     // null when the body is not JSON
+  int retry_after_s = -1;  // the Retry-After header in seconds; -1 when absent
 
   bool ok() const { return status >= 200 && status < 300; }
   // "error: detail" from an error body, or the status.
@@ -47,6 +49,17 @@ class DaemonClient {
                std::chrono::milliseconds timeout = kDefaultTimeout,
                std::chrono::milliseconds connect_timeout = kDefaultConnectTimeout);
 
+  // A GET answered 503 "busy" (the daemon's readers or download slots are all taken) is sent
+  // again after Retry-After seconds (else a pause from 0.25 s doubling to 4 s), until
+  // `busy_for` has passed; `notice` is told what is waited for before each pause. A GET only:
+  // it changes nothing, so sending it twice is harmless. Zero: no retry.
+  static constexpr std::chrono::milliseconds kDefaultBusyWait{120000};
+  void retry_busy(std::chrono::milliseconds busy_for,
+                  std::function<void(const std::string&)> notice) {
+    busy_for_ = busy_for;
+    busy_notice_ = std::move(notice);
+  }
+
   // Throw DaemonUnreachable when no answer comes back in time, or when the answer is not the
   // daemon's JSON object.
   DaemonReply get(const std::string& target) const;
@@ -62,6 +75,8 @@ class DaemonClient {
   std::string token_;
   std::chrono::milliseconds timeout_;
   std::chrono::milliseconds connect_timeout_;
+  std::chrono::milliseconds busy_for_{0};
+  std::function<void(const std::string&)> busy_notice_;
 };
 
 }  // namespace wavebench::daemon

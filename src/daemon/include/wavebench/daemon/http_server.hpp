@@ -5,6 +5,7 @@
 
 #include <boost/asio/io_context.hpp>
 #include <boost/beast/core/error.hpp>
+#include <chrono>
 #include <cstdint>
 #include <functional>
 #include <memory>
@@ -15,6 +16,13 @@
 namespace wavebench::daemon {
 
 inline constexpr std::uint64_t kRequestBodyLimit = 1 << 20;
+
+// An event stream's client that leaves what was sent unread this long is dropped and its
+// slot freed (issue #22: clients that never read held every live-stream slot).
+inline constexpr std::chrono::seconds kStalledReaderLimit{10};
+
+// How many event-stream clients were dropped for not reading, since the process started.
+std::uint64_t stalled_event_readers_dropped();
 inline constexpr std::uint32_t kRequestHeaderLimit = 16 << 10;  // request line included
 
 // The answer to a request Beast could not parse (413 body too large, 431 header too large,

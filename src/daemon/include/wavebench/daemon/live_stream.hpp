@@ -25,6 +25,7 @@
 #include <string>
 #include <vector>
 
+#include "wavebench/daemon/counted_slots.hpp"
 #include "wavebench/daemon/event_stream.hpp"
 #include "wavebench/daemon/http_target.hpp"
 #include "wavebench/daemon/live_sample_buffer.hpp"
@@ -41,18 +42,8 @@ struct LiveStreamParams {
 // window_s and columns from the query; std::invalid_argument naming key, value and range.
 LiveStreamParams live_stream_params(const HttpTarget& target);
 
-// At most `max_clients` streams at once: admit() gives a slot that frees itself when the last
-// copy goes, or nullptr when all are taken.
-class LiveStreamClients {
- public:
-  explicit LiveStreamClients(std::size_t max_clients) : max_(max_clients) {}
-  std::shared_ptr<void> admit();
-  std::size_t max() const { return max_; }
-
- private:
-  std::size_t max_;
-  std::shared_ptr<std::atomic<std::size_t>> count_ = std::make_shared<std::atomic<std::size_t>>(0);
-};
+// At most DaemonApi::kMaxLiveStreams streams at once.
+using LiveStreamClients = CountedSlots;
 
 class LiveStreamFrames : public EventStream {
  public:
