@@ -351,21 +351,40 @@ void RunStore::write_results(const std::string& id, const nlohmann::json& result
   write_file_atomically(paths(id).results, results.dump(2) + "\n");
 }
 
-std::string RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
-                                 std::optional<bool> pass, const std::string& verdict) {
+RunRecord RunStore::as_finished(const std::string& id, RunStatus status, const std::string& reason,
+                                std::optional<bool> pass, const std::string& verdict) const {
   if (status != RunStatus::kComplete && status != RunStatus::kAborted) {
     throw std::invalid_argument(std::string("run store: finish status '") +
                                 run_status_name(status) + "'; expected complete or aborted");
   }
+  auto run = find_run(id);
+  if (!run) throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
+  run->status = status;
+  run->reason = reason;
+  run->pass = pass;
+  run->finished_at = format_utc(std::chrono::system_clock::now(), false);
+  run->verdict = verdict.empty() && pass ? std::string(*pass ? "PASS" : "FAIL") : verdict;
+  return *run;
+}
+
+void RunStore::write_finished_status(const std::string& id, RunStatus status,
+                                     const std::string& reason, std::optional<bool> pass,
+                                     const std::string& verdict) const {
+  write_status_file(as_finished(id, status, reason, pass, verdict));
+}
+
+std::string RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
+                                 std::optional<bool> pass, const std::string& verdict) {
+  const RunRecord run = as_finished(id, status, reason, pass, verdict);
   Statement s(db_,
               "UPDATE runs SET status = ?2, reason = ?3, pass = ?4, finished_at = ?5, verdict = ?6 "
               "WHERE id = ?1");
   s.bind(1, id);
-  s.bind(2, std::string(run_status_name(status)));
-  s.bind(3, reason);
-  s.bind(4, pass);
-  s.bind(5, format_utc(std::chrono::system_clock::now(), false));
-  s.bind(6, verdict.empty() && pass ? std::string(*pass ? "PASS" : "FAIL") : verdict);
+  s.bind(2, std::string(run_status_name(run.status)));
+  s.bind(3, run.reason);
+  s.bind(4, run.pass);
+  s.bind(5, run.finished_at);
+  s.bind(6, run.verdict);
   s.step();
   if (sqlite3_changes(db_) != 1) {
     throw std::invalid_argument("run store: run id '" + id + "' is not indexed");

@@ -98,6 +98,12 @@ class RunStore {
   // `verdict` is "PASS", "FAIL" or "UNDECIDED"; empty: from `pass` (PASS, FAIL or none).
   std::string finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
                          std::optional<bool> pass = std::nullopt, const std::string& verdict = {});
+  // status.json as finish_run() will record the run, the index row left `running`: for the
+  // run's report, which reads the folder, before the index says the run ended (its end is
+  // recorded only once every file of its results is on disk). Throws std::system_error naming
+  // the path, std::invalid_argument as finish_run().
+  void write_finished_status(const std::string& id, RunStatus status, const std::string& reason,
+                             std::optional<bool> pass, const std::string& verdict) const;
   // Marks every run left `running` as `incomplete`; returns their ids.
   std::vector<std::string> recover();
 
@@ -110,6 +116,8 @@ class RunStore {
 
  private:
   void write_status_file(const RunRecord& run) const;
+  RunRecord as_finished(const std::string& id, RunStatus status, const std::string& reason,
+                        std::optional<bool> pass, const std::string& verdict) const;
   std::string claim_id();
 
   std::filesystem::path root_;
