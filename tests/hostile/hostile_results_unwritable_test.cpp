@@ -185,8 +185,7 @@ TEST(HostileResultsUnwritable, ARunWhoseFolderTurnsUnwritableEndsAbortedNamingTh
   // The bench safe: inactive, drive not enabled, brake output off (the acquisition figures
   // are refreshed while the bench idles: the newest within a few seconds).
   const auto safe_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (std::chrono::steady_clock::now() < safe_deadline &&
-         status["acquisition"].is_object() &&
+  while (std::chrono::steady_clock::now() < safe_deadline && status["acquisition"].is_object() &&
          status["acquisition"].value("drive_state", std::string()) == "operation enabled") {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     status = client.get("/api/status").body;
