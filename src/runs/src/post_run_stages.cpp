@@ -288,11 +288,13 @@ void record_end(RunContext& c) {
                             c.decision ? procedures::decision_name(*c.decision) : "");
     if (!status_error.empty()) {
       c.results["status_error"] = "status.json not rewritten: " + status_error;
+      c.results["warnings"].push_back(c.results["status_error"]);  // the daemon logs these
     }
   } catch (const std::exception& e) {
     // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
     // next start of a store marks it incomplete; the caller still learns the status here.
     c.results["index_error"] = std::string("run index not updated: ") + e.what();
+    c.results["warnings"].push_back(c.results["index_error"]);
   }
 }
 
