@@ -149,6 +149,8 @@ def main():
     b = copy.deepcopy(base); del b["static"]; broken["complete static run without its passes"] = b
     b = copy.deepcopy(base); b["acquisition"]["log_queue_dropped"] = -1; broken["negative count"] = b
     b = copy.deepcopy(base); b["status"] = "aborted"; broken["aborted without a reason"] = b
+    b = copy.deepcopy(base); b["partial"] = {"from_aborted_run": True, "finished": 1, "planned": 2, "unit": "passes"}
+    broken["a complete run marked partial"] = b
     b = copy.deepcopy(base); b["verdict"] = "MAYBE"; broken["a verdict that is not PASS, FAIL, UNDECIDED or null"] = b
     b = copy.deepcopy(base); b["spec"] = {"name": "../x", "model": "M", "lost_motion_at_percent": None,
                                           "limits": []}; broken["a spec name with a path"] = b
@@ -171,6 +173,19 @@ def main():
             failed = True
         else:
             print("ok   accepted: an aborted lost-motion run")
+
+    # An aborted static run with the passes it had finished (issue #22), marked partial.
+    aborted = copy.deepcopy(base)
+    for key in ("limit_checks", "pass", "undecided_counts_as"):
+        aborted.pop(key, None)
+    aborted.update(status="aborted", reason="EMCY from node 1 (servo drive)", verdict=None,
+                   partial={"from_aborted_run": True, "finished": 2, "planned": 4, "unit": "passes"})
+    errors = errors_of(validator, aborted)
+    if errors:
+        print("FAIL an aborted static run with its finished passes is refused:\n  " + "\n  ".join(errors))
+        failed = True
+    else:
+        print("ok   accepted: an aborted static run with its finished passes, marked partial")
 
     # The torsional figures are uncertain figures; a plain number in their place is refused.
     if "torsional, coarse steps, with the report" in produced:

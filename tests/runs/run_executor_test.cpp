@@ -138,7 +138,12 @@ TEST_F(RunExecutorTest, AnOperatorStopFromAnotherThreadAbortsWithTheReasonAndKee
   EXPECT_FALSE(log.corrupt_record);
   EXPECT_EQ(out.results["status"], "aborted");
   EXPECT_EQ(out.results["reason"], "operator stop");
-  EXPECT_FALSE(out.results.contains("static"));
+  // The finished forward pass is kept, marked as from an aborted run (issue #22); no verdict.
+  ASSERT_TRUE(out.results.contains("partial")) << out.results.dump().substr(0, 400);
+  EXPECT_EQ(out.results["partial"]["finished"], 1);
+  ASSERT_EQ(out.results["static"].size(), 1u);
+  EXPECT_EQ(out.results["static"][0]["direction"], "forward");
+  EXPECT_TRUE(out.results["verdict"].is_null());
 }
 
 TEST_F(RunExecutorTest, ASafetyTripMidRunIsAnAbortNotAnException) {

@@ -72,7 +72,7 @@ class PostRunStagesTest : public ::testing::Test {
 TEST_F(PostRunStagesTest, EveryStageHasAnEstimateAndOnlyWhatRunsCostsTime) {
   auto c = context(nlohmann::json::object());
   c->samples = 100000;
-  ASSERT_EQ(post_run_stages().size(), 6u);
+  ASSERT_EQ(post_run_stages().size(), 7u);
   double total = 0;
   for (const auto& stage : post_run_stages()) total += stage.estimate_s(*c);
   // No twin, no report: only the results' write is left.
@@ -88,6 +88,11 @@ TEST_F(PostRunStagesTest, ProcessingUntilTheResultsAreWrittenThenComplete) {
   EXPECT_EQ(store_->find_run(c->outcome.run_id)->status, storage::RunStatus::kRunning);
   decide_verdict(*c);
   write_results(*c);
+  // On disk, status.json as it will be; the index says running until the end is recorded.
+  EXPECT_EQ(store_->find_run(c->outcome.run_id)->status, storage::RunStatus::kRunning);
+  std::ifstream status_file(c->paths.status);
+  EXPECT_EQ(nlohmann::json::parse(status_file)["status"], "complete");
+  record_end(*c);
   EXPECT_EQ(store_->find_run(c->outcome.run_id)->status, storage::RunStatus::kComplete);
   std::ifstream final_file(c->paths.results);
   EXPECT_EQ(nlohmann::json::parse(final_file)["status"], "complete");
@@ -100,6 +105,7 @@ TEST_F(PostRunStagesTest, ResultsThatCannotBeWrittenMakeTheRunAbortedNotPass) {
   std::filesystem::remove(c->paths.results);
   std::filesystem::create_directories(c->paths.results);
   write_results(*c);
+  record_end(*c);
   const auto row = store_->find_run(c->outcome.run_id);
   ASSERT_TRUE(row);
   EXPECT_EQ(row->status, storage::RunStatus::kAborted);

@@ -8,6 +8,7 @@
 
 #include "wavebench/report/run_report.hpp"
 #include "wavebench/runs/run_limits.hpp"
+#include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/storage/sample_log.hpp"
 #include "wavebench/twin/twin_overlay.hpp"
 #include "wavebench/twin/unit_twin_store.hpp"
@@ -88,13 +89,18 @@ double estimate_report(const RunContext& c) {
   return kMargin * (kReportS + kReportPerSampleS * static_cast<double>(c.samples));
 }
 
+// The run's end goes into the index only once every file of its results is on disk (issue
+// #22): results.json and status.json as they will stand, the report, results.json final, then
+// the index row. The unit twin comes after it: it calibrates over the unit's complete runs in
+// the index, and it is the unit's file, not this run's results.
 constexpr std::array kStages{
     PostRunStage{"twin", estimate_twin, finish_twin},
     PostRunStage{"twin calibration", estimate_calibration, calibrate_twin},
     PostRunStage{"verdict", estimate_verdict, decide_verdict},
     PostRunStage{"results", estimate_results, write_results},
-    PostRunStage{"unit twin", estimate_unit_twin, update_unit_twin},
     PostRunStage{"report", estimate_report, write_report},
+    PostRunStage{"record", estimate_results, record_end},
+    PostRunStage{"unit twin", estimate_unit_twin, update_unit_twin},
 };
 
 // results.json where it can still be written; false with the reason in results otherwise.
@@ -105,6 +111,40 @@ bool write_results_file(RunContext& c) {
   } catch (const std::exception& e) {
     c.results["results_error"] = std::string("results.json not written: ") + e.what();
     return false;
+  }
+}
+
+// A file of the run's results could not be written (the text names the path and the error):
+// the run ends aborted for it, its verdict withdrawn, and a report written while it was
+// complete removed (it would say PASS for a run that is not).
+void abort_for_unwritten(RunContext& c, const std::string& what) {
+  if (c.complete()) {
+    if (const auto r = c.results.find("report"); r != c.results.end() && r->is_string()) {
+      std::error_code ignored;
+      std::filesystem::remove(r->get<std::string>(), ignored);
+      c.results.erase("report");
+    }
+  }
+  c.abort_with(what);
+  c.pass.reset();
+  c.decision.reset();
+  c.results["status"] = storage::run_status_name(c.outcome.status);
+  c.results["reason"] = c.outcome.reason;
+  c.results["pass"] = nullptr;
+  c.results["verdict"] = nullptr;
+  c.results.erase("limit_checks");
+  c.results.erase("undecided_counts_as");
+}
+
+// An aborted run's results.json, where a new one cannot be made beside it: the one there
+// (`processing`, or `complete` from before a later file failed) overwritten in place, so that
+// it does not go on saying otherwise than the index.
+void land_aborted_results(RunContext& c) {
+  if (write_results_file(c)) return;
+  try {
+    storage::overwrite_file_in_place(c.paths.results, c.results.dump(2) + "\n");
+  } catch (const std::exception&) {  // NOLINT(bugprone-empty-catch)
+    // None there, or none writable: the index and status.json still say aborted.
   }
 }
 
@@ -131,6 +171,8 @@ void finish_twin(RunContext& c) {
     const auto& live = c.twin_beside->finish();
     c.twin_json = twin::to_json(live);
     c.twin_json["gear"] = c.twin_source;
+    // twin.csv is one of the run's files: not on disk, the run is not complete.
+    if (!live.overlay_error.empty()) abort_for_unwritten(c, live.overlay_error);
     if (!live.residual) {
       throw std::runtime_error("twin residual: " + std::to_string(live.points) +
                                " points, fewer than 8 with a measured and a predicted TE");
@@ -151,10 +193,15 @@ void calibrate_twin(RunContext& c) {
     const auto& s = c.procedure_result.static_result;
     c.calibration =
         twin::calibrate_twin(c.twin_gear, c.description.sense, samples, s ? &*s : nullptr, options);
-    twin::write_calibrated_twin_config(c.paths.dir / "twin-calibrated.yaml", *c.calibration);
-    // The calibrated twin's replay, for the run page's before/after plot.
-    twin::write_replay_csv(c.paths.dir / "twin-calibrated.csv", c.calibration->calibrated,
-                           c.description.sense, samples, c.calibration->solver);
+    try {
+      twin::write_calibrated_twin_config(c.paths.dir / "twin-calibrated.yaml", *c.calibration);
+      // The calibrated twin's replay, for the run page's before/after plot.
+      twin::write_replay_csv(c.paths.dir / "twin-calibrated.csv", c.calibration->calibrated,
+                             c.description.sense, samples, c.calibration->solver);
+    } catch (const std::exception& e) {
+      abort_for_unwritten(c, std::string("twin calibration not written: ") + e.what());
+      throw;
+    }
     c.twin_json["calibration"] = twin::to_json(*c.calibration);
     c.twin_json["calibration"]["config"] = "twin-calibrated.yaml";
   } catch (const std::exception& e) {
@@ -162,9 +209,29 @@ void calibrate_twin(RunContext& c) {
   }
 }
 
+// A run that did not complete keeps the figures of every part its procedure had finished,
+// marked as from an aborted run (results.json `partial`).
+void keep_finished_figures(RunContext& c) {
+  if (c.complete() || !c.procedure_result.json.empty() || !c.finished || c.finished->finished < 1) {
+    return;
+  }
+  try {
+    const auto sections = c.finished->sections();
+    for (const auto& [key, value] : sections.items()) c.results[key] = value;
+    c.results["partial"] = {{"from_aborted_run", true},
+                            {"finished", c.finished->finished},
+                            {"planned", c.finished->planned},
+                            {"unit", c.finished->unit}};
+  } catch (const std::exception& e) {
+    c.results["warnings"].push_back(std::string("figures finished before the abort not kept: ") +
+                                    e.what());
+  }
+}
+
 void decide_verdict(RunContext& c) {
   auto& results = c.results;
   for (auto& [key, value] : c.procedure_result.json.items()) results[key] = value;
+  keep_finished_figures(c);
   if (!c.twin_json.is_null()) results["twin"] = c.twin_json;
   results["status"] = storage::run_status_name(c.outcome.status);
   if (!c.complete()) results["reason"] = c.outcome.reason;
@@ -181,30 +248,59 @@ void decide_verdict(RunContext& c) {
       c.decision ? nlohmann::json(procedures::decision_name(*c.decision)) : nlohmann::json();
 }
 
-// Not complete, not PASS, until results.json is on disk (issue #22): a run whose results
-// cannot be written is finished aborted with the error's text, its verdict withdrawn.
+// results.json, and status.json as the index will record the run (the report reads both).
+// Not complete, not PASS, when either cannot be written: finished aborted with the error.
 void write_results(RunContext& c) {
   if (!write_results_file(c)) {
-    c.abort_with(c.results["results_error"].get<std::string>());
-    c.pass.reset();
-    c.decision.reset();
-    c.results["status"] = storage::run_status_name(c.outcome.status);
-    c.results["reason"] = c.outcome.reason;
-    c.results["pass"] = nullptr;
-    c.results["verdict"] = nullptr;
+    abort_for_unwritten(c, c.results["results_error"].get<std::string>());
+    return;
   }
   try {
-    c.store->finish_run(c.outcome.run_id, c.outcome.status, c.outcome.reason, c.pass,
-                        c.decision ? procedures::decision_name(*c.decision) : "");
+    c.store->write_finished_status(c.outcome.run_id, c.outcome.status, c.outcome.reason, c.pass,
+                                   c.decision ? procedures::decision_name(*c.decision) : "");
+  } catch (const std::exception& e) {
+    abort_for_unwritten(c, std::string("status.json not written: ") + e.what());
+  }
+}
+
+void write_report(RunContext& c) {
+  if (!c.request.report || c.results.contains("results_error")) return;
+  try {
+    const auto report = report::write_run_report(c.paths.dir);
+    c.results["report"] = report.html.string();
+  } catch (const std::exception& e) {
+    c.results["report_error"] = e.what();
+    // Asked for and not on disk: the run's results are not all there.
+    abort_for_unwritten(c, std::string("report not written: ") + e.what());
+  }
+}
+
+// results.json final (the report's path, the post-run timing), then the index row: the run's
+// end is recorded once its files are on disk, or as aborted with the reason they are not.
+void record_end(RunContext& c) {
+  if (c.complete() && !write_results_file(c)) {
+    abort_for_unwritten(c, c.results["results_error"].get<std::string>());
+  }
+  if (!c.complete()) land_aborted_results(c);
+  try {
+    const auto status_error =
+        c.store->finish_run(c.outcome.run_id, c.outcome.status, c.outcome.reason, c.pass,
+                            c.decision ? procedures::decision_name(*c.decision) : "");
+    if (!status_error.empty()) {
+      c.results["status_error"] = "status.json not rewritten: " + status_error;
+      c.results["warnings"].push_back(c.results["status_error"]);  // the daemon logs these
+    }
   } catch (const std::exception& e) {
     // The index cannot be written (e.g. its disk is full too): the row stays `running` and the
     // next start of a store marks it incomplete; the caller still learns the status here.
     c.results["index_error"] = std::string("run index not updated: ") + e.what();
+    c.results["warnings"].push_back(c.results["index_error"]);
   }
 }
 
 // The unit's twin anew, over this run and the unit's newest run of every other procedure:
-// the twin beside the bench on the unit's next run.
+// the twin beside the bench on the unit's next run. After the index row (it reads the unit's
+// complete runs there); its outcome joins results.json where that can still be rewritten.
 void update_unit_twin(RunContext& c) {
   if (!calibrates(c) || c.unit_serial.empty() || c.results.contains("index_error")) return;
   try {
@@ -221,18 +317,12 @@ void update_unit_twin(RunContext& c) {
   } catch (const std::exception& e) {
     c.results["twin"]["unit_twin"] = {{"error", e.what()}};
   }
-  write_results_file(c);
-}
-
-void write_report(RunContext& c) {
-  if (!c.request.report || c.results.contains("results_error")) return;
   try {
-    const auto report = report::write_run_report(c.paths.dir);
-    c.results["report"] = report.html.string();
+    c.store->write_results(c.outcome.run_id, c.results);
   } catch (const std::exception& e) {
-    c.results["report_error"] = e.what();
+    c.results["twin"]["unit_twin"]["results_error"] =
+        std::string("results.json not rewritten with the unit twin: ") + e.what();
   }
-  write_results_file(c);
 }
 
 }  // namespace wavebench::runs

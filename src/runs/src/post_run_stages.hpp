@@ -25,8 +25,9 @@ void mark_processing(RunContext& c);
 void finish_twin(RunContext& c);       // the twin beside the bench drained, its residual
 void calibrate_twin(RunContext& c);    // the twin fitted to this run (complete runs)
 void decide_verdict(RunContext& c);    // status, limit checks, pass and verdict in results
-void write_results(RunContext& c);     // results.json, then the index row finished
-void update_unit_twin(RunContext& c);  // the unit's twin over its newest runs
+void write_results(RunContext& c);     // results.json, status.json as it will be recorded
 void write_report(RunContext& c);      // report.html and its plots
+void record_end(RunContext& c);        // results.json final, then the index row finished
+void update_unit_twin(RunContext& c);  // the unit's twin over its newest runs
 
 }  // namespace wavebench::runs

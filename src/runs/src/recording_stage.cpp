@@ -245,6 +245,16 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
       if (auto* static_te = std::get_if<StaticTeProcedure>(&c.parsed.procedure)) {
         static_te->set_point_sink(request.on_point);
       }
+      // Every procedure that measures in parts hands them over as they finish. Not with
+      // repeats: the parts of one repeat alone would pass for the run's.
+      std::visit(
+          [&c](auto& p) {
+            if constexpr (requires { p.set_finished_sink(FinishedFiguresSink{}); }) {
+              if (c.parsed.repeats > 1) return;
+              p.set_finished_sink([&c](FinishedFigures f) { c.finished = std::move(f); });
+            }
+          },
+          c.parsed.procedure);
       try {
         c.procedure_result =
             run_procedure(c.parsed.procedure, bench, c.parsed.repeats, report_progress);

@@ -12,6 +12,7 @@
 #include "parsed_request.hpp"
 #include "wavebench/bench/bench_description.hpp"
 #include "wavebench/procedures/static_te_statistics.hpp"
+#include "wavebench/runs/finished_figures.hpp"
 #include "wavebench/runs/run_executor.hpp"
 #include "wavebench/twin/twin_beside_bench.hpp"
 #include "wavebench/twin/twin_calibrator.hpp"
@@ -37,6 +38,9 @@ struct RunContext {
   RunOutcome outcome;  // status kAborted once abort_with() was called
   nlohmann::json results = nlohmann::json::object();
   ProcedureResult procedure_result;
+  // What the procedure had finished by its last part: results.json's sections of a run that
+  // did not complete (issue #22).
+  std::optional<FinishedFigures> finished;
 
   // The twin beside the bench: the unit's own when it had one at the run's start, else the
   // bench's nominal twin case.

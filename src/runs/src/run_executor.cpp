@@ -37,7 +37,10 @@ RunOutcome RecordedRun::finish(const ProgressSink& progress) {
   double total = 0;
   for (const auto& stage : stages) total += estimates.emplace_back(stage.estimate_s(c));
   double done = 0;
-  nlohmann::json timing = nlohmann::json::object();
+  // How long each stage took against its estimate (what the constants are measured from), in
+  // the results as it goes: the stage that writes them final carries the stages before it.
+  c.results["timing"]["post_run"] = nlohmann::json::object();
+  c.results["timing"]["samples"] = c.samples;
   for (std::size_t i = 0; i < stages.size(); ++i) {
     if (progress) {
       progress({c.outcome.run_id, stages[i].phase, total > 0 ? done / total : 0, total - done});
@@ -46,13 +49,11 @@ RunOutcome RecordedRun::finish(const ProgressSink& progress) {
     stages[i].run(c);
     const double spent =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    timing[stages[i].phase] = {{"estimated_s", estimates[i]}, {"spent_s", spent}};
+    c.results["timing"]["post_run"][stages[i].phase] = {{"estimated_s", estimates[i]},
+                                                        {"spent_s", spent}};
     done += estimates[i];
   }
-  // How long each stage took against its estimate: what the constants are measured from.
-  c.results["timing"]["post_run"] = timing;
-  c.results["timing"]["samples"] = c.samples;
-  if (!c.results.contains("results_error")) {
+  if (!c.results.contains("results_error") && !c.results.contains("index_error")) {
     try {
       c.store->write_results(c.outcome.run_id, c.results);
     } catch (const std::exception&) {

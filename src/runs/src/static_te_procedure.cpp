@@ -263,6 +263,18 @@ StaticTeOutcome StaticTeProcedure::run(bench::Bench& bench,
         ++done;
       }
       out.passes.push_back(std::move(pass));
+      if (finished_sink_) {
+        // A copy of the passes so far; their analysis waits until it is asked for.
+        finished_sink_({[passes = out.passes, timeouts = out.settle_timeouts, sense, uncertainty] {
+                          StaticTeOutcome so_far;
+                          so_far.passes = passes;
+                          so_far.settle_timeouts = timeouts;
+                          so_far.result = procedures::analyse_static_te(passes, sense, uncertainty);
+                          return so_far.to_json();
+                        },
+                        static_cast<int>(out.passes.size()),
+                        static_cast<int>(o.loads_nm.size()) * 2, "passes"});
+      }
     }
   }
   bench.set_brake_torque(0);

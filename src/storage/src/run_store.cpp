@@ -244,41 +244,10 @@ nlohmann::json to_json(const RunRecord& run) {
   return j;
 }
 
-namespace {
-
-// The writer's lock on `root`: the open descriptor, or -1 where the file system has no locks
-// or the folder is not writable (the index then says what is wrong). Throws RunStoreInUse when
-// another process holds it.
-int lock_writer(const std::filesystem::path& root) {
-  const auto file = root / kWriterLockFile;
-  const int fd = ::open(file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
-  if (fd < 0) return -1;
-  struct flock lock {};
-  lock.l_type = F_WRLCK;
-  lock.l_whence = SEEK_SET;
-  if (::fcntl(fd, F_SETLK, &lock) == 0) return fd;
-  const int err = errno;
-  if (err != EACCES && err != EAGAIN) {
-    ::close(fd);
-    return -1;  // no record locks here (some network file systems): as before, unguarded
-  }
-  struct flock holder {};
-  holder.l_type = F_WRLCK;
-  holder.l_whence = SEEK_SET;
-  const bool known = ::fcntl(fd, F_GETLK, &holder) == 0 && holder.l_type != F_UNLCK;
-  ::close(fd);
-  throw RunStoreInUse("run store " + root.string() + ": in use by " +
-                      (known ? "process " + std::to_string(holder.l_pid) : "another process") +
-                      " (a wavebenchd or a wavebench run writing runs there); expected a folder "
-                      "no other process writes");
-}
-
-}  // namespace
-
 RunStore::RunStore(std::filesystem::path root, std::string software_version)
     : root_(std::move(root)), software_version_(std::move(software_version)) {
   std::filesystem::create_directories(root_);
-  lock_fd_ = lock_writer(root_);
+  lock_ = std::make_unique<WriterLock>(root_);
   const auto db_path = root_ / "index.sqlite";
   if (sqlite3_open_v2(db_path.c_str(), &db_,
                       SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX,
@@ -286,7 +255,6 @@ RunStore::RunStore(std::filesystem::path root, std::string software_version)
     std::string message = db_ ? sqlite3_errmsg(db_) : "out of memory";
     sqlite3_close(db_);
     db_ = nullptr;
-    if (lock_fd_ >= 0) ::close(lock_fd_);
     throw std::runtime_error("run index: cannot open " + db_path.string() + ": " + message);
   }
   sqlite3_busy_timeout(db_, 5000);
@@ -298,7 +266,6 @@ RunStore::RunStore(std::filesystem::path root, std::string software_version)
 
 RunStore::~RunStore() {
   sqlite3_close(db_);
-  if (lock_fd_ >= 0) ::close(lock_fd_);
 }
 
 RunPaths RunStore::paths(const std::string& id) const {
@@ -384,21 +351,40 @@ void RunStore::write_results(const std::string& id, const nlohmann::json& result
   write_file_atomically(paths(id).results, results.dump(2) + "\n");
 }
 
-void RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
-                          std::optional<bool> pass, const std::string& verdict) {
+RunRecord RunStore::as_finished(const std::string& id, RunStatus status, const std::string& reason,
+                                std::optional<bool> pass, const std::string& verdict) const {
   if (status != RunStatus::kComplete && status != RunStatus::kAborted) {
     throw std::invalid_argument(std::string("run store: finish status '") +
                                 run_status_name(status) + "'; expected complete or aborted");
   }
+  auto run = find_run(id);
+  if (!run) throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
+  run->status = status;
+  run->reason = reason;
+  run->pass = pass;
+  run->finished_at = format_utc(std::chrono::system_clock::now(), false);
+  run->verdict = verdict.empty() && pass ? std::string(*pass ? "PASS" : "FAIL") : verdict;
+  return *run;
+}
+
+void RunStore::write_finished_status(const std::string& id, RunStatus status,
+                                     const std::string& reason, std::optional<bool> pass,
+                                     const std::string& verdict) const {
+  write_status_file(as_finished(id, status, reason, pass, verdict));
+}
+
+std::string RunStore::finish_run(const std::string& id, RunStatus status, const std::string& reason,
+                                 std::optional<bool> pass, const std::string& verdict) {
+  const RunRecord run = as_finished(id, status, reason, pass, verdict);
   Statement s(db_,
               "UPDATE runs SET status = ?2, reason = ?3, pass = ?4, finished_at = ?5, verdict = ?6 "
               "WHERE id = ?1");
   s.bind(1, id);
-  s.bind(2, std::string(run_status_name(status)));
-  s.bind(3, reason);
-  s.bind(4, pass);
-  s.bind(5, format_utc(std::chrono::system_clock::now(), false));
-  s.bind(6, verdict.empty() && pass ? std::string(*pass ? "PASS" : "FAIL") : verdict);
+  s.bind(2, std::string(run_status_name(run.status)));
+  s.bind(3, run.reason);
+  s.bind(4, run.pass);
+  s.bind(5, run.finished_at);
+  s.bind(6, run.verdict);
   s.step();
   if (sqlite3_changes(db_) != 1) {
     throw std::invalid_argument("run store: run id '" + id + "' is not indexed");
@@ -407,8 +393,10 @@ void RunStore::finish_run(const std::string& id, RunStatus status, const std::st
   // full disk must not turn a finished run back into an exception.
   try {
     write_status_file(*find_run(id));
-  } catch (const std::system_error&) {  // NOLINT(bugprone-empty-catch)
+  } catch (const std::system_error& e) {
+    return e.what();
   }
+  return {};
 }
 
 std::vector<std::string> RunStore::recover() {
@@ -423,7 +411,12 @@ std::vector<std::string> RunStore::recover() {
     s.bind(2, std::string("the process ended while the run was running"));
     s.step();
     if (auto updated = find_run(run.id); updated && std::filesystem::exists(paths(run.id).dir)) {
-      write_status_file(*updated);
+      try {
+        write_status_file(*updated);
+      } catch (const std::system_error&) {  // NOLINT(bugprone-empty-catch)
+        // A folder that cannot be written any more (read-only, immutable) must not keep the
+        // store from opening: the index holds the status.
+      }
     }
     ids.push_back(run.id);
   }
@@ -461,7 +454,19 @@ std::size_t RunStore::count_runs(const RunQuery& query) const {
 }
 
 void RunStore::write_status_file(const RunRecord& run) const {
-  write_file_atomically(paths(run.id).status, to_json(run).dump(2) + "\n");
+  const auto file = paths(run.id).status;
+  const std::string text = to_json(run).dump(2) + "\n";
+  try {
+    write_file_atomically(file, text);
+  } catch (const std::system_error& atomic) {
+    // No new file beside it (a folder made read-only, a full disk): the old one must still not
+    // go on saying `running` once the index says otherwise.
+    try {
+      overwrite_file_in_place(file, text);
+    } catch (const std::system_error& in_place) {
+      throw std::system_error(atomic.code(), std::string(atomic.what()) + "; " + in_place.what());
+    }
+  }
 }
 
 }  // namespace wavebench::storage

@@ -12,6 +12,7 @@
 #include "wavebench/bench/bench.hpp"
 #include "wavebench/procedures/settle_detector.hpp"
 #include "wavebench/procedures/static_te_statistics.hpp"
+#include "wavebench/runs/finished_figures.hpp"
 #include "wavebench/runs/option_reader.hpp"
 #include "wavebench/runs/procedure_progress.hpp"
 #include "wavebench/runs/run_plan.hpp"
@@ -63,10 +64,13 @@ class StaticTeProcedure {
   StaticTeOutcome run(bench::Bench& bench, const ProcedureProgress& progress = {}) const;
   // Where run() reports each settled position as it is measured (none: not reported).
   void set_point_sink(SettledPointSink sink) { point_sink_ = std::move(sink); }
+  // Where run() hands over its finished passes after each one (none: not handed over).
+  void set_finished_sink(FinishedFiguresSink sink) { finished_sink_ = std::move(sink); }
 
  private:
   StaticTeOptions options_;
   SettledPointSink point_sink_;
+  FinishedFiguresSink finished_sink_;
 };
 
 }  // namespace wavebench::runs

@@ -11,6 +11,13 @@ namespace wavebench::storage {
 // Throws std::system_error naming the path.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 
+// The last resort for a small file that must not go on saying something false (status.json,
+// results.json of a run that ends aborted) when a new file cannot be made beside it (a folder
+// made read-only, a full disk): the existing file overwritten in place and synced. Never
+// creates it. Not crash-safe (a crash in between leaves it short), hence only after
+// write_file_atomically() failed. Throws std::system_error naming the path.
+void overwrite_file_in_place(const std::filesystem::path& path, std::string_view content);
+
 // The same for a file written as it goes (a twin's overlay over an hour-long run): appended
 // to a temp file in the target's directory, which commit() syncs and renames over the target.
 // Not committed (an error, an exception, the destructor first), the temp file is removed and

@@ -11,11 +11,14 @@
 // start time, and creating the folder claims the id, so two stores never share one.
 
 #include <filesystem>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
+
+#include "wavebench/storage/writer_lock.hpp"
 
 struct sqlite3;
 
@@ -65,19 +68,13 @@ struct RunPaths {
 };
 
 // The store's own files in its root beside the run folders: the index (and SQLite's -wal and
-// -shm beside it) and the writer's lock.
+// -shm beside it) and the file naming the writer's process (the lock is the folder's).
 inline constexpr const char* kRunIndexFile = "index.sqlite";
-inline constexpr const char* kWriterLockFile = ".writer.lock";
-
-// Another process writes runs under the root (a wavebenchd, a `wavebench run --out`).
-struct RunStoreInUse : std::runtime_error {
-  using std::runtime_error::runtime_error;
-};
 
 // Not copyable: owns the SQLite connection. One writing process per root: recover() marks every
 // `running` run `incomplete`, which would end a live run of another process, so the store holds
-// a POSIX record lock on <root>/.writer.lock while it lives. The lock belongs to the process
-// (several stores of one process share it) and the kernel drops it when the process dies.
+// the root's WriterLock (writer_lock.hpp: a flock on the folder itself) while it lives. Stores
+// of one process share it; the kernel drops it when the process dies.
 class RunStore {
  public:
   // Creates the root and the index if missing, then recover(). Throws RunStoreInUse naming the
@@ -95,11 +92,18 @@ class RunStore {
                          const std::string& spec = {});
   void write_results(const std::string& id, const nlohmann::json& results);
   // status is kComplete or kAborted; throws std::invalid_argument for an unknown id. The
-  // index is updated first; status.json is rewritten where it still can be (a full disk does
-  // not make this throw once the index holds the status).
+  // index is updated first; status.json is rewritten where it still can be, in place when no
+  // new file can be made beside it (a full disk does not make this throw once the index holds
+  // the status). Returns why status.json could not be rewritten; empty when it was.
   // `verdict` is "PASS", "FAIL" or "UNDECIDED"; empty: from `pass` (PASS, FAIL or none).
-  void finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
-                  std::optional<bool> pass = std::nullopt, const std::string& verdict = {});
+  std::string finish_run(const std::string& id, RunStatus status, const std::string& reason = {},
+                         std::optional<bool> pass = std::nullopt, const std::string& verdict = {});
+  // status.json as finish_run() will record the run, the index row left `running`: for the
+  // run's report, which reads the folder, before the index says the run ended (its end is
+  // recorded only once every file of its results is on disk). Throws std::system_error naming
+  // the path, std::invalid_argument as finish_run().
+  void write_finished_status(const std::string& id, RunStatus status, const std::string& reason,
+                             std::optional<bool> pass, const std::string& verdict) const;
   // Marks every run left `running` as `incomplete`; returns their ids.
   std::vector<std::string> recover();
 
@@ -112,11 +116,13 @@ class RunStore {
 
  private:
   void write_status_file(const RunRecord& run) const;
+  RunRecord as_finished(const std::string& id, RunStatus status, const std::string& reason,
+                        std::optional<bool> pass, const std::string& verdict) const;
   std::string claim_id();
 
   std::filesystem::path root_;
   std::string software_version_;
-  int lock_fd_ = -1;
+  std::unique_ptr<WriterLock> lock_;
   sqlite3* db_ = nullptr;
   std::string last_id_;
 };
