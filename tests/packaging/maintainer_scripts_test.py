@@ -13,6 +13,8 @@ import shutil
 import subprocess
 import sys
 
+from checks import check
+
 STUB = r"""#!/usr/bin/python3
 # Stub of {name} for maintainer_scripts_test.py: users and groups in $DPKG_ROOT/etc.
 import os, sys
@@ -51,17 +53,6 @@ elif name == "delgroup":
     gr, groups = table("group")
     save(gr, [g for g in groups if g[0] != args[0]])
 """
-
-
-def fail(message):
-    print("FAIL: " + message, file=sys.stderr)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
-    print("ok: " + message)
 
 
 def make_root(path, source_dir):

@@ -36,20 +36,11 @@ import seccomp
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import packaged_unit  # noqa: E402
 
+from checks import check, fail
+
 PR_CAPBSET_DROP = 24
 PR_SET_MDWE = 65
 PR_MDWE_REFUSE_EXEC_GAIN = 1
-
-
-def fail(message):
-    print("FAIL: " + message, file=sys.stderr)
-    sys.exit(1)
-
-
-def check(condition, message):
-    if not condition:
-        fail(message)
-    print("ok: " + message)
 
 
 def syscall_groups():
