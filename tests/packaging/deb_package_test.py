@@ -15,7 +15,6 @@ import shutil
 import signal
 import subprocess
 import sys
-import time
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import packaged_unit  # noqa: E402
@@ -99,15 +98,7 @@ def main():
                                stdout=subprocess.PIPE, stderr=log, text=True, env=env,
                                cwd=work)
     try:
-        port = None
-        deadline = time.time() + 60
-        while port is None and time.time() < deadline:
-            line = process.stdout.readline()
-            if not line:
-                break
-            m = re.search(r"listening on http://127\.0\.0\.1:(\d+)", line)
-            if m:
-                port = int(m.group(1))
+        port = packaged_unit.listening_port(process.stdout)
         if port is None:
             log.seek(0)
             fail("the installed wavebenchd did not start:\n" + log.read())

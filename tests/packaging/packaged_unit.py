@@ -3,6 +3,7 @@ install runs, writes it for a prefix; its settings read back as (key, value) pai
 import os
 import re
 import subprocess
+import time
 
 
 def write_unit(source_dir, prefix, out_dir):
@@ -37,3 +38,16 @@ def exposure(unit_path):
                              unit_path], capture_output=True, text=True)
     m = re.search(r"Overall exposure level for wavebenchd\.service: (\d+\.\d+)", result.stdout)
     return (float(m.group(1)) if m else None), result.stdout + result.stderr
+
+
+def listening_port(stdout, timeout_s=60):
+    """The port wavebenchd says it listens on (its first lines on stdout), or None."""
+    deadline = time.time() + timeout_s
+    while time.time() < deadline:
+        line = stdout.readline()
+        if not line:
+            return None
+        m = re.search(r"listening on http://127\.0\.0\.1:(\d+)", line)
+        if m:
+            return int(m.group(1))
+    return None

@@ -312,15 +312,7 @@ def main():
     runs, token = os.path.join(state, "runs"), os.path.join(state, "daemon.token")
     daemon_pid = None
     try:
-        port = None
-        deadline = time.time() + 60
-        while port is None and time.time() < deadline:
-            line = process.stdout.readline()
-            if not line:
-                break
-            m = re.search(r"listening on http://127\.0\.0\.1:(\d+)", line)
-            if m:
-                port = int(m.group(1))
+        port = packaged_unit.listening_port(process.stdout)
         log.flush()
         check(port is not None,
               "wavebenchd starts in the sandbox:\n" + open(log_path).read()[-3000:])

@@ -137,10 +137,9 @@ class Session : public std::enable_shared_from_this<Session> {
                       });
   }
 
-  // Server-sent events: the header without a length, then each event as the stream gives it,
-  // until a write fails (the client went away) or the stream ends; then the connection closes.
-  void stream_events(ApiResponse response, unsigned version) {
-    events_ = std::move(response.stream);
+  // The header of a response whose body follows in pieces (events, chunks).
+  static std::shared_ptr<http::response<http::empty_body>> header_of(const ApiResponse& response,
+                                                                     unsigned version) {
     auto header = std::make_shared<http::response<http::empty_body>>(
         static_cast<http::status>(response.status), version);
     header->set(http::field::server, "wavebenchd");
@@ -148,6 +147,14 @@ class Session : public std::enable_shared_from_this<Session> {
     header->set(http::field::cache_control, "no-store");
     header->set("X-Content-Type-Options", "nosniff");
     for (const auto& [name, value] : response.headers) header->set(name, value);
+    return header;
+  }
+
+  // Server-sent events: the header without a length, then each event as the stream gives it,
+  // until a write fails (the client went away) or the stream ends; then the connection closes.
+  void stream_events(ApiResponse response, unsigned version) {
+    events_ = std::move(response.stream);
+    auto header = header_of(response, version);
     header->keep_alive(false);
     auto serializer = std::make_shared<http::response_serializer<http::empty_body>>(*header);
     beast::error_code ignored;
@@ -212,13 +219,7 @@ class Session : public std::enable_shared_from_this<Session> {
   // within kChunkWriteDeadline.
   void send_chunks(ApiResponse response, unsigned version) {
     chunks_ = std::move(response.chunks);
-    auto header = std::make_shared<http::response<http::empty_body>>(
-        static_cast<http::status>(response.status), version);
-    header->set(http::field::server, "wavebenchd");
-    header->set(http::field::content_type, response.content_type);
-    header->set(http::field::cache_control, "no-store");
-    header->set("X-Content-Type-Options", "nosniff");
-    for (const auto& [name, value] : response.headers) header->set(name, value);
+    auto header = header_of(response, version);
     header->chunked(true);
     header->keep_alive(false);
     auto serializer = std::make_shared<http::response_serializer<http::empty_body>>(*header);
