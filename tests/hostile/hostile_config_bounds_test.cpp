@@ -150,11 +150,8 @@ TEST(HostileConfigBounds, TwinValuesThatOverflowAndTinyRunsAreRefusedNamingTheKe
   const fs::path out = box.root() / "out";
   int tried = 0, refused = 0;
   for (const auto& c : twin_cases()) {
-    const fs::path file = box.in("case.yaml");
-    write_file(file, c.text);
     ++tried;
-    const CliResult r = run_wavebench(
-        "sim " + quoted(file) + " --out " + quoted(out) + " --quiet " + c.extra_args, box.log("t"));
+    const CliResult r = run_twin_case(box, c.text, c.extra_args, out, "t");
     SCOPED_TRACE(c.label + ": " + r.output);
     const bool names_all = r.output.find(c.key + ": got '" + c.value + "'") != std::string::npos &&
                            r.output.find("expected") != std::string::npos;

@@ -55,4 +55,13 @@ inline std::string with_line(std::string text, const std::string& key_line,
   return text;
 }
 
+// `wavebench sim` on a twin case written to `box`, with `extra_args`, its output aimed at `out`.
+inline CliResult run_twin_case(Sandbox& box, const std::string& text, const std::string& extra_args,
+                               const fs::path& out, const std::string& log_name) {
+  const fs::path file = box.in("case.yaml");
+  write_file(file, text);
+  return run_wavebench("sim " + quoted(file) + " --out " + quoted(out) + " --quiet " + extra_args,
+                       box.log(log_name));
+}
+
 }  // namespace wavebench::hostile

@@ -101,12 +101,8 @@ TEST(HostileConfigValues, TwinExtremeValuesAreRefusedNamingTheKey) {
   const fs::path out = box.root() / "out";
   int tried = 0, refused = 0;
   for (const auto& e : extremes()) {
-    const fs::path file = box.in("case.yaml");
-    write_file(file, e.text);
     ++tried;
-    const CliResult r =
-        run_wavebench("sim " + quoted(file) + " --out " + quoted(out) + " --quiet " + e.extra_args,
-                      box.log("last"));
+    const CliResult r = run_twin_case(box, e.text, e.extra_args, out, "last");
     SCOPED_TRACE(e.label + ": " + r.output);
     EXPECT_EQ(r.exit_code, 2);
     EXPECT_NE(r.output.find(e.key), std::string::npos) << "names " << e.key;
