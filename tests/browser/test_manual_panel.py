@@ -32,6 +32,21 @@ STANDING_RPM = 0.5
 MOVING_30 = {"moving 29 rpm", "moving 30 rpm", "moving 31 rpm"}
 
 
+# Whether the element's centre hits the element itself (or a child), twice 100 ms apart at the
+# same place: a press aimed there reaches it.
+HIT_AT_CENTRE = """
+const e = arguments[0];
+const at = () => { const r = e.getBoundingClientRect(); return [r.left + r.width / 2, r.top + r.height / 2]; };
+const [x, y] = at();
+const hit = document.elementFromPoint(x, y);
+if (!hit || !(hit === e || e.contains(hit))) return false;
+return new Promise((resolve) => setTimeout(() => {
+  const [x2, y2] = at();
+  resolve(x2 === x && y2 === y);
+}, 100));
+"""
+
+
 def rpm(status):
     latest = status.get("latest") or {}
     speed = latest.get("input_speed_rad_s")
@@ -70,18 +85,35 @@ class ManualPanelTest(ConsolePageTest):
         press that never reached the page from a jog the daemon stopped."""
         s = self.status()
         page = {id_: self.panel_text(id_) for id_ in ("manual-servo", "manual-note", "manual-error")}
-        jogging = self.browser.execute_script("return window.wavebenchManual.jogging")
+        page_state = self.browser.execute_script(
+            "const m = window.wavebenchManual; return [m.jogging, m.presses || 0, m.stopCause,"
+            " document.activeElement && document.activeElement.id, document.hasFocus()]")
         return (f"daemon: lifecycle={s.get('lifecycle')} servo={s.get('servo')!r} "
-                f"input={rpm(s)} rpm manual={s.get('manual')}\npage: {page} jogging={jogging}")
+                f"input={rpm(s)} rpm manual={s.get('manual')}\npage: {page} [jogging, presses, "
+                f"stop cause, focus, page focused]={page_state}")
 
     def wait_standing(self, start, bound):
-        """Polls the status until the input stands; returns the seconds since `start`."""
+        """Polls the status until the input stands; returns the seconds since `start` and keeps
+        the wall-clock time it was seen standing."""
         deadline = start + bound + 2
         while time.monotonic() < deadline:
             speed = rpm(self.status())
             if speed is not None and abs(speed) < STANDING_RPM:
+                self.standing_at = time.time()
                 return time.monotonic() - start
         self.fail(f"the input still turns {deadline - start:.1f} s after {bound} s were allowed")
+
+    def released_at(self):
+        return self.browser.execute_script("return window.wavebenchManual.releasedAt || 0")
+
+    def since_page_release(self, before):
+        """Seconds from the page's own release event (its stop sent) to the input seen standing,
+        both on this machine's wall clock. The promise is the page's and the daemon's: the time
+        WebDriver takes to deliver the release on a loaded machine is not in it (printed
+        beside). The page must have seen the release, or the input stopped for another reason."""
+        released = self.released_at()
+        self.assertNotEqual(released, before, "the page never saw the release")
+        return self.standing_at - released / 1000
 
     def panel_text(self, id_):
         return self.browser.find_element(By.ID, id_).text
@@ -94,10 +126,34 @@ class ManualPanelTest(ConsolePageTest):
     def press(self, element):
         """A pointer press held on `element`, centred in the view first: WebDriver scrolls an
         element to the top edge, under the console's sticky header, which then takes the
-        press."""
+        press. Waits until the button's centre is the button itself (nothing laid over it, no
+        layout still moving)."""
         self.browser.execute_script("arguments[0].scrollIntoView({block: 'center'})", element)
+        self.until("the button on top at its centre, in place",
+                   lambda: self.browser.execute_script(HIT_AT_CENTRE, element), 5)
         ActionChains(self.browser).reset_actions()
         return ActionChains(self.browser).move_to_element(element).click_and_hold()
+
+    def hold(self, element, direction):
+        """Holds `element` until the page says it jogs. A press that never reached the button
+        (the page counted no pointerdown) or that the page ended by itself (its stop cause is
+        printed) left the input standing: not the property under test, so it is tried again,
+        twice at most, each miss printed."""
+        for attempt in range(3):
+            presses = self.browser.execute_script("return window.wavebenchManual.presses || 0")
+            self.press(element).perform()
+            deadline = time.monotonic() + 3
+            while time.monotonic() < deadline:
+                if self.browser.execute_script("return window.wavebenchManual.jogging") == direction:
+                    return
+                time.sleep(0.02)
+            after = self.browser.execute_script("return window.wavebenchManual.presses || 0")
+            seen = self.situation()
+            ActionChains(self.browser).release().perform()
+            # Either way the input stands (the safe side); the jog is then tried again.
+            what = "was taken and ended" if after != presses else "did not reach the button"
+            print(f"press {attempt + 1} {what}: {seen}", flush=True)
+        self.fail("three presses did not hold the jog button")
 
     def set_field(self, id_, value):
         field = self.browser.find_element(By.ID, id_)
@@ -117,7 +173,7 @@ class ManualPanelTest(ConsolePageTest):
 
         self.set_field("jog-speed", 30)
         forward = self.browser.find_element(By.ID, "jog-forward")
-        self.press(forward).perform()
+        self.hold(forward, 1)
         self.until("moving", lambda: self.status()["servo"] in MOVING_30)
         # Held for 1.5 s (five times the keep-alive timeout): it keeps turning at 30 rpm.
         speeds, words = [], set()
@@ -134,15 +190,15 @@ class ManualPanelTest(ConsolePageTest):
         self.assertEqual(self.status()["lifecycle"], "active")
         self.shot_panel("manual-jogging")
 
+        before = self.released_at()
         start = time.monotonic()
         ActionChains(self.browser).release().perform()
         latency = self.wait_standing(start, RELEASE_BOUND_S)
-        standing_at = time.time()
-        released_at = self.browser.execute_script("return window.wavebenchManual.releasedAt") / 1000
-        print(f"\njog released -> input standing after {latency * 1000:.0f} ms from the "
-              f"WebDriver release, {(standing_at - released_at) * 1000:.0f} ms from the page's "
-              f"pointerup (bound {RELEASE_BOUND_S * 1000:.0f} ms)", flush=True)
-        self.assertLessEqual(latency, RELEASE_BOUND_S)
+        from_page = self.since_page_release(before)
+        print(f"\njog released -> input standing {from_page * 1000:.0f} ms after the page's "
+              f"pointerup, {latency * 1000:.0f} ms after the WebDriver release was sent "
+              f"(bound {RELEASE_BOUND_S * 1000:.0f} ms)", flush=True)
+        self.assertLessEqual(from_page, RELEASE_BOUND_S)
         # The servo was on for the jog only: off again.
         self.until("servo off after", lambda: self.status()["servo"] == "servo off", 3)
         self.until("page shows servo off",
@@ -156,7 +212,7 @@ class ManualPanelTest(ConsolePageTest):
         # The page: the jog held, then its requests never reach the daemon (a cable pulled):
         # no stop is sent, the daemon's timeout stops it.
         forward = self.browser.find_element(By.ID, "jog-forward")
-        self.press(forward).perform()
+        self.hold(forward, 1)
         try:
             self.until("moving", lambda: (rpm(self.status()) or 0) > 25)
         except AssertionError:
@@ -187,11 +243,14 @@ class ManualPanelTest(ConsolePageTest):
             # The measured speed, once the drive has settled after its ramp.
             self.until("words", lambda: self.status()["servo"] in {w.replace("g ", "g -") for w in MOVING_30}, 3)
         finally:
+            before = self.released_at()
             start = time.monotonic()
             ActionChains(self.browser).key_up(Keys.SPACE).perform()
         latency = self.wait_standing(start, RELEASE_BOUND_S)
-        print(f"\nkeyboard jog released -> standing after {latency * 1000:.0f} ms", flush=True)
-        self.assertLessEqual(latency, RELEASE_BOUND_S)
+        from_page = self.since_page_release(before)
+        print(f"\nkeyboard jog released -> standing {from_page * 1000:.0f} ms after the page's "
+              f"keyup, {latency * 1000:.0f} ms after the WebDriver key up was sent", flush=True)
+        self.assertLessEqual(from_page, RELEASE_BOUND_S)
 
     def test_3_lost_connection_stops_within_the_heartbeat_timeout(self):
         self.reset_bench()

@@ -23,6 +23,7 @@
 #include "wavebench/daemon/run_launcher.hpp"
 #include "wavebench/simdevices/brake_server.hpp"
 #include "wavebench/storage/run_store.hpp"
+#include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::daemon::testing {
 namespace {
@@ -131,14 +132,24 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   DaemonClient client("http://127.0.0.1:" + std::to_string(daemon.port()),
                       "0123456789abcdef0123456789abcdef");
 
-  // The acquisition figures are refreshed while the bench idles: wait for a brake readback.
+  // The acquisition figures are refreshed while the bench idles: wait until every readback the
+  // checks below read has come once (the brake's, the drive's statusword, a heartbeat of each
+  // node). On a loaded machine the first of them may take seconds; what they say is judged after.
+  const auto settled = [](const nlohmann::json& s) {
+    const auto& a = s["acquisition"];
+    if (!a.is_object() || a["brake_output_on"].is_null() || !a["drive_statusword"].is_number() ||
+        !a["nodes"].is_array() || a["nodes"].size() < 3U)
+      return false;
+    for (const auto& node : a["nodes"])
+      if (!node["heartbeat_age_s"].is_number()) return false;
+    return true;
+  };
   nlohmann::json status;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
   do {
     std::this_thread::sleep_for(std::chrono::milliseconds(100));
     status = client.get("/api/status").body;
-  } while (std::chrono::steady_clock::now() < deadline &&
-           (status["acquisition"].is_null() || status["acquisition"]["brake_output_on"].is_null()));
+  } while (std::chrono::steady_clock::now() < deadline && !settled(status));
   EXPECT_EQ(status["lifecycle"], "inactive") << status.dump();
   // Its devices with their state and command interfaces, in configuration order.
   const auto& devices = status["devices"];
@@ -188,7 +199,12 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
 
   // /api/live: two reads apart, the second brings newer samples, every channel but the brake's
   // present.
-  const auto first = client.get("/api/live?limit=10").body;
+  nlohmann::json first;
+  do {
+    first = client.get("/api/live?limit=10").body;
+    if (!first["samples"].empty()) break;
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  } while (std::chrono::steady_clock::now() < deadline);
   ASSERT_FALSE(first["samples"].empty()) << first.dump();
   const auto next = first["next"].get<std::uint64_t>();
   // At 1 kHz, 50 samples take 50 ms; a loaded machine may take longer (counts, not timing).
@@ -202,14 +218,27 @@ TEST(DaemonOnTheRealClock, IdleDaemonHoldsTheBenchInactiveAndStreamsLiveSamples)
   // Newer samples: the live sequence number and the SYNC time both advance.
   auto last_seq = first["samples"].back()["seq"].get<std::uint64_t>();
   auto last_time = first["samples"].back()["receive_time_ns"].get<std::int64_t>();
+  // A cycle whose PDOs came after the next SYNC (the simulated devices share this machine's
+  // cores on the real clock) has those channels marked missing and null, never a stale value;
+  // most cycles are complete (on an idle machine all but one or two in a hundred).
+  std::size_t complete = 0;
   for (const auto& sample : second["samples"]) {
-    ASSERT_GT(sample["seq"].get<std::uint64_t>(), last_seq);
-    ASSERT_GT(sample["receive_time_ns"].get<std::int64_t>(), last_time);
+    ASSERT_GT(sample["seq"].get<std::uint64_t>(), last_seq) << sample.dump();
+    ASSERT_GT(sample["receive_time_ns"].get<std::int64_t>(), last_time) << sample.dump();
     last_seq = sample["seq"].get<std::uint64_t>();
     last_time = sample["receive_time_ns"].get<std::int64_t>();
-    for (const char* channel : {"theta_in_rad", "theta_out_rad", "torque_nm"})
-      ASSERT_TRUE(sample[channel].is_number()) << channel << " in " << sample.dump();
+    const auto flags = sample["flags"].get<std::uint32_t>();
+    for (const auto& [channel, bit] : {std::pair{"theta_in_rad", storage::kThetaInValid},
+                                       std::pair{"theta_out_rad", storage::kThetaOutValid},
+                                       std::pair{"torque_nm", storage::kTorqueValid}})
+      ASSERT_EQ(sample[channel].is_number(), (flags & bit) != 0)
+          << channel << " in " << sample.dump();
+    if ((flags & storage::kAllChannelsValid) == storage::kAllChannelsValid) ++complete;
   }
+  EXPECT_GT(complete, 50U);
+  EXPECT_GE(complete * 2, second["samples"].size())
+      << complete << " complete of " << second["samples"].size();
+  std::printf("%zu of %zu live samples complete\n", complete, second["samples"].size());
   daemon.shutdown("test done");
 }
 

@@ -63,11 +63,12 @@ class ManualPanel {
     for (const [button, direction] of [[this.reverse, -1], [this.forward, 1]]) {
       button.addEventListener('pointerdown', (e) => {
         if (e.button !== 0) return;
+        this.presses = (this.presses || 0) + 1; // for the browser test's diagnostics
         button.setPointerCapture(e.pointerId);
         this.startJog(direction);
       });
       for (const type of ['pointerup', 'pointercancel', 'lostpointercapture']) {
-        button.addEventListener(type, () => this.stopJog());
+        button.addEventListener(type, () => this.stopJog(type));
       }
       button.addEventListener('keydown', (e) => {
         if ((e.key === ' ' || e.key === 'Enter') && !e.repeat) {
@@ -78,19 +79,19 @@ class ManualPanel {
       button.addEventListener('keyup', (e) => {
         if (e.key === ' ' || e.key === 'Enter') {
           e.preventDefault();
-          this.stopJog();
+          this.stopJog('keyup');
         }
       });
       // Only this button's own jog: pressing the other one moves focus away from this one.
       button.addEventListener('blur', () => {
-        if (this.jogging === direction) this.stopJog();
+        if (this.jogging === direction) this.stopJog('button blur');
       });
       button.addEventListener('contextmenu', (e) => e.preventDefault());
     }
-    window.addEventListener('blur', () => this.stopJog());
-    window.addEventListener('pagehide', () => this.stopJog());
+    window.addEventListener('blur', () => this.stopJog('window blur'));
+    window.addEventListener('pagehide', () => this.stopJog('pagehide'));
     document.addEventListener('visibilitychange', () => {
-      if (document.hidden) this.stopJog();
+      if (document.hidden) this.stopJog('hidden');
     });
     this.servo.addEventListener('click', () => {
       const on = !(this.status && this.status.manual && this.status.manual.servo_on);
@@ -122,10 +123,12 @@ class ManualPanel {
     this.sendJog();
   }
 
-  stopJog() {
+  // `cause` is kept for the browser test's diagnostics: which event ended a hold.
+  stopJog(cause) {
     if (this.jogging === 0) return;
     this.jogging = 0;
     this.releasedAt = Date.now(); // for the browser test's stop latency
+    this.stopCause = cause;
     this.root.classList.remove('jogging');
     this.send('stop', {});
   }
@@ -140,6 +143,7 @@ class ManualPanel {
     } catch (e) {
       // A refused jog ends the hold: the operator has to press again after fixing it.
       this.jogging = 0;
+      this.stopCause = `refused: ${e.message}`;
       this.root.classList.remove('jogging');
       this.showError(e);
     }
@@ -217,7 +221,7 @@ class ManualPanel {
     this.note.textContent = blocked || (idle && m.last_stop ? `Last stop: ${m.last_stop}` : '');
     for (const c of this.controls) c.disabled = Boolean(blocked) && c !== this.servo;
     this.servo.disabled = Boolean(blocked) && !m.servo_on;
-    if (blocked) this.stopJog();
+    if (blocked) this.stopJog(blocked);
   }
 }
 
