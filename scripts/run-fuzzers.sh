@@ -1,21 +1,31 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang (ASan + UBSan, whole tree instrumented) and runs each
-# for a bounded time. Usage: scripts/run-fuzzers.sh [seconds per target, default 30]
+# for a bounded time. Usage: scripts/run-fuzzers.sh [seconds per target, default 30] [STAGE]
+# STAGE: all (default), build or run. run-tests.sh builds first, then runs the fuzzers (one
+# core) beside the vcan VM (one TCG thread).
 set -euo pipefail
 seconds="${1:-30}"
+stage="${2:-all}"
+case "$stage" in
+  all | build | run) ;;
+  *) echo "run-fuzzers.sh: stage '$stage': expected all, build or run" >&2; exit 2 ;;
+esac
 root="$(cd "$(dirname "$0")/.." && pwd)"
 build="${WAVEBENCH_FUZZ_BUILD_DIR:-$root/build-fuzz}"
 jobs="${WAVEBENCH_JOBS:-2}"
 
-cmake -S "$root" -B "$build" -G Ninja \
-  -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-  -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link,address,undefined" \
-  -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" \
-  -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
-  -DWAVEBENCH_WERROR=OFF >/dev/null
 targets=(fuzz_can_frames fuzz_sdo_client fuzz_eds fuzz_twin_config fuzz_bench_config
   fuzz_procedure_options fuzz_brake_config fuzz_simbench_config fuzz_http_api fuzz_exports)
-cmake --build "$build" -j "$jobs" --target "${targets[@]}"
+if [[ "$stage" != run ]]; then
+  cmake -S "$root" -B "$build" -G Ninja \
+    -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_C_FLAGS="-fsanitize=fuzzer-no-link,address,undefined" \
+    -DCMAKE_CXX_FLAGS="-fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined" \
+    -DWAVEBENCH_BUILD_FUZZERS=ON -DWAVEBENCH_BUILD_TESTS=OFF -DWAVEBENCH_BUILD_BENCHMARKS=OFF \
+    -DWAVEBENCH_WERROR=OFF >/dev/null
+  cmake --build "$build" -j "$jobs" --target "${targets[@]}"
+fi
+[[ "$stage" != build ]] || exit 0
 
 status=0
 for t in "${targets[@]}"; do
