@@ -9,8 +9,8 @@
 # the XB-80 case)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash scripts/install-deps.sh
-bash scripts/build.sh
+bash scripts/install-deps.sh --main
+bash scripts/build.sh --main
 wavebench=./${WAVEBENCH_BUILD_DIR:-build}/src/cli/wavebench
 out=${1:-out/bench}
 mkdir -p "$out"
