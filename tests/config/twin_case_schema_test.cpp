@@ -209,3 +209,30 @@ TEST(TwinCaseSchema, DampingRatioAndCoefficientTogetherIsAnError) {
 
 }  // namespace
 }  // namespace wavebench::config
+
+namespace wavebench::config {
+namespace {
+
+// Issue #23 item 3: friction at either shaft; the default is the wave generator's.
+TEST(TwinCaseSchema, FrictionSideIsInputUnlessTheCaseSaysOutput) {
+  const std::string stiffness = "stiffness: {form: cubic, k1: 1e5, k3: 0}\n";
+  EXPECT_EQ(parse_with(stiffness + "friction: {model: coulomb_stribeck, coulomb: 0.1, "
+                                   "stribeck_speed: 1}\n")
+                .gear.friction_side,
+            model::FrictionSide::kInput);
+  EXPECT_EQ(parse_with(stiffness + "friction: {model: lugre, side: output, sigma0: 500, "
+                                   "coulomb: 0.1, stribeck_speed: 1}\n")
+                .gear.friction_side,
+            model::FrictionSide::kOutput);
+  try {
+    parse_with(stiffness +
+               "friction: {model: lugre, side: brake, sigma0: 500, coulomb: 0.1, "
+               "stribeck_speed: 1}\n");
+    FAIL() << "accepted side: brake";
+  } catch (const ConfigError& e) {
+    EXPECT_NE(std::string(e.what()).find("side"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace wavebench::config

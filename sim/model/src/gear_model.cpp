@@ -242,17 +242,20 @@ void GearModel::evaluate(double t, const double* y, const double* d, double* dyd
           ? limit_backlash_torque(x > 0 ? 1.0 : (x < 0 ? -1.0 : 0.0), spring, damping)
           : spring + damping;
 
-  // Friction at the wave generator.
+  // Friction at the wave generator or at the output bearing.
+  const bool output_friction = params_.friction_side == FrictionSide::kOutput;
+  const double friction_speed = output_friction ? omega2 : omega1;
   double friction = 0, friction_loss = 0;
   if (const auto* cs = std::get_if<CoulombStribeck>(&friction_)) {
-    friction = cs->torque(omega1);
-    friction_loss = friction * omega1;
+    friction = cs->torque(friction_speed);
+    friction_loss = friction * friction_speed;
   } else if (const auto* lg = std::get_if<LuGre>(&friction_)) {
-    const LuGreState st = lg->evaluate(omega1, y[L.bristle]);
+    const LuGreState st = lg->evaluate(friction_speed, y[L.bristle]);
     friction = st.torque;
     friction_loss = st.dissipation;
     if (dydt) dydt[L.bristle] = st.bristle_rate;
   }
+  const double input_friction = output_friction ? 0.0 : friction;
 
   // Load on the output.
   const LoadParams& lp = params_.load;
@@ -262,6 +265,7 @@ void GearModel::evaluate(double t, const double* y, const double* d, double* dyd
     drag = lp.output_drag_coulomb * std::tanh(omega2 / lp.drag_smoothing_speed);
     load += drag;
   }
+  if (output_friction) load += friction;
   if (brake_) {
     const double capacity = y[L.brake_capacity];
     const double brake = brake_->torque(capacity, omega2);
@@ -281,7 +285,7 @@ void GearModel::evaluate(double t, const double* y, const double* d, double* dyd
   const double omega2_dot = (gear - cz * omega2 - load) / j2_;
   double motor = 0;
   if (kinematic_) {
-    motor = j1_ * alpha1 + cj * omega1 + friction + gear * inv_ratio_;
+    motor = j1_ * alpha1 + cj * omega1 + input_friction + gear * inv_ratio_;
   } else {
     const double ripple = model::evaluate(lp.drive_ripple, t);
     switch (drive_.index()) {
@@ -308,7 +312,7 @@ void GearModel::evaluate(double t, const double* y, const double* d, double* dyd
       }
     }
     motor += ripple;
-    alpha1 = (motor - cj * omega1 - friction - gear * inv_ratio_) / j1_;
+    alpha1 = (motor - cj * omega1 - input_friction - gear * inv_ratio_) / j1_;
   }
 
   const double loss = (gear - spring) * delta_rate + hysteresis_loss + friction_loss +

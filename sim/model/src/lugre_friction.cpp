@@ -33,6 +33,15 @@ LuGreState LuGre::evaluate(double omega, double s) const noexcept {
   return st;
 }
 
+double LuGre::bristle_after(double omega, double s, double h) const noexcept {
+  if (omega == 0.0) return s;
+  const double level =
+      p_.coulomb + (p_.static_torque - p_.coulomb) * std::exp(-omega * omega * inv_speed_sq_);
+  const double rate = std::abs(omega) * p_.sigma0 / level;  // s' = omega - rate s
+  const double steady = omega / rate;
+  return steady + (s - steady) * std::exp(-rate * h);
+}
+
 double LuGre::steady_deflection() const noexcept {
   return p_.coulomb / p_.sigma0;
 }

@@ -69,8 +69,12 @@ model::ServoDriveInput parse_servo(YamlSection& s) {
 
 }  // namespace
 
-void parse_friction_section(YamlSection& s, model::FrictionLaw& friction) {
+void parse_friction_section(YamlSection& s, model::FrictionLaw& friction,
+                            model::FrictionSide& side) {
   const std::string law = s.choice("model", {"none", "coulomb_stribeck", "lugre"});
+  if (const auto at = s.optional_choice("side", {"input", "output"})) {
+    side = *at == "output" ? model::FrictionSide::kOutput : model::FrictionSide::kInput;
+  }
   if (law == "coulomb_stribeck") {
     model::CoulombStribeckFriction f;
     f.coulomb = s.non_negative_quantity_or("coulomb", Dimension::kTorque, 0.0);

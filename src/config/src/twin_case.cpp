@@ -20,7 +20,8 @@ TwinCase parse_document(const YAML::Node& root) {
   parse_stiffness_section(stiffness, twin.gear.stiffness);
   if (auto s = doc.optional_section("backlash")) parse_backlash_section(*s, twin.gear.backlash);
   if (auto s = doc.optional_section("damping")) parse_damping_section(*s, twin.gear.damping);
-  if (auto s = doc.optional_section("friction")) parse_friction_section(*s, twin.gear.friction);
+  if (auto s = doc.optional_section("friction"))
+    parse_friction_section(*s, twin.gear.friction, twin.gear.friction_side);
   YamlSection input = doc.section("input");
   parse_input_section(input, twin.gear);
   if (auto s = doc.optional_section("load")) parse_load_section(*s, twin.gear.load);

@@ -154,8 +154,10 @@ void stiffness_section(YAML::Emitter& out, const model::StiffnessParams& s) {
   out << YAML::EndMap;
 }
 
-void friction_section(YAML::Emitter& out, const model::FrictionLaw& friction) {
+void friction_section(YAML::Emitter& out, const model::FrictionLaw& friction,
+                      model::FrictionSide side) {
   out << YAML::Key << "friction" << YAML::Value << YAML::BeginMap;
+  if (side == model::FrictionSide::kOutput) out << YAML::Key << "side" << YAML::Value << "output";
   std::visit(Overloaded{[&](const model::NoFriction&) {
                           out << YAML::Key << "model" << YAML::Value << "none";
                         },
@@ -291,7 +293,7 @@ std::string write_twin_case_yaml(const TwinCase& twin, const std::string& commen
     }
     out << YAML::EndMap;
   }
-  friction_section(out, g.friction);
+  friction_section(out, g.friction, g.friction_side);
   input_section(out, g);
   load_section(out, g.load);
   solver_section(out, twin.solver);

@@ -13,7 +13,8 @@ void parse_te_section(YamlSection& s, model::GearParams& gear);
 void parse_stiffness_section(YamlSection& s, model::StiffnessParams& stiffness);
 void parse_backlash_section(YamlSection& s, model::BacklashParams& backlash);
 void parse_damping_section(YamlSection& s, model::MeshDamping& damping);
-void parse_friction_section(YamlSection& s, model::FrictionLaw& friction);
+void parse_friction_section(YamlSection& s, model::FrictionLaw& friction,
+                            model::FrictionSide& side);
 // Also sets gear.nominal_input_speed.
 void parse_input_section(YamlSection& s, model::GearParams& gear);
 void parse_load_section(YamlSection& s, model::LoadParams& load);

@@ -14,65 +14,36 @@ namespace {
 
 constexpr double kArcmin = std::numbers::pi / (180.0 * 60.0);
 
-template <class... Ts>
-struct Overloaded : Ts... {
-  using Ts::operator()...;
-};
-// Clang before 17 does not deduce aggregate bases without it (the fuzz build uses clang).
-template <class... Ts>
-Overloaded(Ts...) -> Overloaded<Ts...>;
-
-double three_segment(const model::ThreeSegmentStiffness& s, double x) {
-  const double ax = std::abs(x);
-  const double x1 = s.t1 / s.k1;
-  const double x2 = x1 + (s.t2 - s.t1) / s.k2;
-  double t = 0;
-  if (ax <= x1) {
-    t = s.k1 * ax;
-  } else if (ax <= x2) {
-    t = s.t1 + s.k2 * (ax - x1);
-  } else {
-    t = s.t2 + s.k3 * (ax - x2);
-  }
-  return std::copysign(t, x);
+std::string num(double v) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.6g", v);
+  return buf;
 }
 
-double table(const model::TableStiffness& s, double x) {
-  // Piecewise linear and odd-extended; the full model's PCHIP differs only between points.
-  const double ax = std::abs(x);
-  const auto& xs = s.twist_rad;
-  const auto& ts = s.torque_nm;
-  double t = 0;
-  if (ax >= xs.back()) {
-    const std::size_t n = xs.size();
-    const double slope = (ts[n - 1] - ts[n - 2]) / (xs[n - 1] - xs[n - 2]);
-    t = ts[n - 1] + slope * (ax - xs[n - 1]);
-  } else {
-    const auto it = std::upper_bound(xs.begin(), xs.end(), ax);
-    const auto i = static_cast<std::size_t>(it - xs.begin());
-    const double f = (ax - xs[i - 1]) / (xs[i] - xs[i - 1]);
-    t = ts[i - 1] + f * (ts[i] - ts[i - 1]);
-  }
-  return std::copysign(t, x);
-}
-
-double mean_stiffness(const model::StiffnessParams& p) {
-  if (p.mean_stiffness) return *p.mean_stiffness;
-  return std::visit(Overloaded{[](const model::LinearPeriodicStiffness& s) { return s.k0; },
-                               [](const model::CubicStiffness& s) { return s.k1; },
-                               [](const model::ThreeSegmentStiffness& s) { return s.k1; },
-                               [](const model::TableStiffness& s) {
-                                 return s.twist_rad.size() >= 2 ? s.torque_nm[1] / s.twist_rad[1]
-                                                                : 0.0;
-                               },
-                               [](const auto&) { return 0.0; }},
-                    p.law);
+double sign_of(double v) noexcept {
+  return v > 0 ? 1.0 : (v < 0 ? -1.0 : 0.0);
 }
 
 }  // namespace
 
 SimulatedBenchPlant::SimulatedBenchPlant(model::GearParams params, double max_substep)
-    : params_(std::move(params)), max_substep_(max_substep) {
+    : params_(std::move(params)),
+      max_substep_(max_substep),
+      te_(params_.te_terms),
+      dead_zone_(params_.backlash),
+      spring_([&]() -> Spring {
+        const auto& law = params_.stiffness.law;
+        if (const auto* h = std::get_if<model::HystereticBranchStiffness>(&law)) {
+          return model::HystereticBranchSpring(*h);
+        }
+        if (const auto* f = std::get_if<model::FadingMemoryStiffness>(&law)) {
+          return model::FadingMemorySpring(*f);
+        }
+        if (const auto* b = std::get_if<model::BoucWenStiffness>(&law)) {
+          return model::BoucWenSpring(*b);
+        }
+        return model::ElasticStiffness(params_.stiffness);
+      }()) {
   const auto& g = params_.geometry;
   ratio_ = g.ratio;
   if (ratio_ == 0 && g.z_circ != g.z_flex) {
@@ -88,31 +59,61 @@ SimulatedBenchPlant::SimulatedBenchPlant(model::GearParams params, double max_su
                                 std::to_string(params_.inertia_input) + ", " +
                                 std::to_string(params_.inertia_output) + ")");
   }
-  const bool supported = std::visit(
-      Overloaded{
-          [](const model::LinearPeriodicStiffness&) { return true; },
-          [](const model::CubicStiffness&) { return true; },
-          [](const model::ThreeSegmentStiffness& s) { return s.k1 > 0 && s.k2 > 0 && s.k3 > 0; },
-          [](const model::TableStiffness& s) {
-            return s.twist_rad.size() >= 2 && s.twist_rad.size() == s.torque_nm.size();
-          },
-          [&](const auto&) { return params_.stiffness.mean_stiffness.has_value(); }},
-      params_.stiffness.law);
-  if (!supported) {
+  // The simulated bench's brake is its own device (the Modbus powder-brake controller), set
+  // by the procedures: a brake in the unit's case would be a second one nobody drives.
+  if (params_.load.brake) {
     throw std::invalid_argument(
-        "stiffness law is not usable by the simulated bench (expected linear, cubic, "
-        "three-segment with k1,k2,k3 > 0, a table of >= 2 points, or a hysteretic law with "
-        "mean_stiffness)");
+        "load.brake: the simulated bench cannot take a brake from the unit's case (expected no "
+        "load.brake: the bench's own brake controller loads the output)");
   }
-  const double k_mean = mean_stiffness(params_.stiffness);
-  if (!(k_mean > 0)) throw std::invalid_argument("stiffness: mean stiffness must be > 0");
+  if (params_.load.output_drag_coulomb != 0 && !(params_.load.drag_smoothing_speed > 0)) {
+    throw std::invalid_argument("load.drag_smoothing_speed = " +
+                                num(params_.load.drag_smoothing_speed) + " rad/s: expected > 0");
+  }
+  output_friction_ = params_.friction_side == model::FrictionSide::kOutput;
+  const double j_friction = output_friction_ ? params_.inertia_output : params_.inertia_input;
+  const std::string shaft = output_friction_ ? "inertia_output" : "inertia_input";
+  // The fixed explicit step must resolve the friction law's fastest time constant on its shaft;
+  // a sharper law is refused by name rather than run unstable.
+  if (const auto* cs = std::get_if<model::CoulombStribeckFriction>(&params_.friction)) {
+    friction_ = model::CoulombStribeck(*cs);
+    const double slope = std::max(cs->static_torque, cs->coulomb) / cs->smoothing_speed;
+    if (max_substep_ * slope / j_friction > 1) {
+      throw std::invalid_argument("friction.smoothing_speed = " + num(cs->smoothing_speed) +
+                                  " rad/s: too sharp for the simulated bench's step of " +
+                                  num(max_substep_) + " s on " + shaft + " (expected >= " +
+                                  num(max_substep_ * cs->static_torque / j_friction) + " rad/s)");
+    }
+  } else if (const auto* lg = std::get_if<model::LuGreFriction>(&params_.friction)) {
+    friction_ = model::LuGre(*lg);
+    if (max_substep_ * std::sqrt(lg->sigma0 / j_friction) > 1) {
+      throw std::invalid_argument(
+          "friction.sigma0 = " + num(lg->sigma0) +
+          " N*m/rad: too stiff for the simulated bench's step of " + num(max_substep_) + " s on " +
+          shaft + " (expected <= " + num(j_friction / (max_substep_ * max_substep_)) + ")");
+    }
+    if (max_substep_ * (lg->sigma1 + lg->sigma2) / j_friction > 1) {
+      throw std::invalid_argument("friction.sigma1 = " + num(lg->sigma1) +
+                                  " N*m*s/rad: too much damping for the simulated bench's step "
+                                  "of " +
+                                  num(max_substep_) + " s on " + shaft + " (expected <= " +
+                                  num(j_friction / max_substep_ - lg->sigma2) + ")");
+    }
+  }
+  // Mean stiffness and mesh damping as GearModel derives them (model.md §2).
+  double k_small = 0;
+  std::visit([&](const auto& spring) { k_small = spring.small_twist_stiffness(); }, spring_);
+  const double k_mean = params_.stiffness.mean_stiffness.value_or(k_small);
+  if (!(k_mean > 0)) throw std::invalid_argument("stiffness.mean: mean stiffness must be > 0");
   if (params_.damping.coefficient) {
     damping_ = *params_.damping.coefficient;
-  } else {
-    const double zeta = params_.damping.damping_ratio.value_or(0.06);
+  } else if (params_.damping.damping_ratio) {
     const double n2j1 = ratio_ * ratio_ * params_.inertia_input;
     const double j_eq = n2j1 * params_.inertia_output / (n2j1 + params_.inertia_output);
-    damping_ = 2 * zeta * std::sqrt(j_eq * k_mean);
+    damping_ = 2 * *params_.damping.damping_ratio * std::sqrt(j_eq * k_mean);
+  }
+  if (!(damping_ >= 0)) {
+    throw std::invalid_argument("damping = " + num(damping_) + " N*m*s/rad: expected >= 0");
   }
   // The unit starts at rest, its output where the mesh carries no torque (twist 0), not at
   // θ2 = 0: there the TE offset would preload the spring and the output would ring for the
@@ -124,73 +125,32 @@ SimulatedBenchPlant::SimulatedBenchPlant(model::GearParams params, double max_su
 }
 
 double SimulatedBenchPlant::te_excitation(double theta_in, double theta_out) const {
-  double e = 0;
-  for (const auto& term : params_.te_terms) {
-    e += term.amplitude_rad *
-         std::sin(term.order_input * theta_in + term.order_output * theta_out + term.phase_rad);
-  }
-  return e;
-}
-
-double SimulatedBenchPlant::te_rate(double theta_in, double theta_out, double omega_in,
-                                    double omega_out) const {
-  double de = 0;
-  for (const auto& term : params_.te_terms) {
-    de += term.amplitude_rad * (term.order_input * omega_in + term.order_output * omega_out) *
-          std::cos(term.order_input * theta_in + term.order_output * theta_out + term.phase_rad);
-  }
-  return de;
+  return te_.evaluate(theta_in, theta_out, 0, 0).value;
 }
 
 double SimulatedBenchPlant::backlash_filter(double twist) const {
-  const double half = params_.backlash.total_rad / 2;
-  if (twist > half) return twist - half;
-  if (twist < -half) return twist + half;
-  return 0;
+  return dead_zone_.evaluate(twist).x;
 }
 
 double SimulatedBenchPlant::stiffness_torque(double x, double theta_in, double theta_out) const {
-  double modulation = 1;
-  for (const auto& h : params_.stiffness.modulation) {
-    modulation +=
-        h.amplitude * std::cos(h.order_input * theta_in + h.order_output * theta_out + h.phase_rad);
+  switch (spring_.index()) {
+    case 0:
+      return std::get<0>(spring_).torque(x, theta_in, theta_out);
+    case 1:
+      return std::get<1>(spring_).torque(x, law_.anchor);
+    case 2:
+      return std::get<2>(spring_).torque(x, law_.memory);
+    default:
+      return std::get<3>(spring_).torque(x, law_.memory);
   }
-  return std::visit(
-      Overloaded{
-          [&](const model::LinearPeriodicStiffness& s) {
-            double k = s.k0;
-            for (const auto& h : s.harmonics) {
-              k += h.amplitude *
-                   std::cos(h.order_input * theta_in + h.order_output * theta_out + h.phase_rad);
-            }
-            return k * x;
-          },
-          [&](const model::CubicStiffness& s) {
-            return modulation * (s.k1 * x + s.k3 * x * x * x);
-          },
-          [&](const model::ThreeSegmentStiffness& s) { return modulation * three_segment(s, x); },
-          [&](const model::TableStiffness& s) { return modulation * table(s, x); },
-          [&](const auto&) { return *params_.stiffness.mean_stiffness * x; }},
-      params_.stiffness.law);
 }
 
-double SimulatedBenchPlant::friction_torque(double omega_in) const {
-  return std::visit(
-      Overloaded{[](const model::NoFriction&) { return 0.0; },
-                 [&](const model::CoulombStribeckFriction& f) {
-                   const double stribeck =
-                       f.coulomb + (f.static_torque - f.coulomb) *
-                                       std::exp(-std::pow(omega_in / f.stribeck_speed, 2));
-                   return stribeck * std::tanh(omega_in / f.smoothing_speed) + f.viscous * omega_in;
-                 },
-                 // LuGre's steady-state curve; the bristle dynamics are the full model's job.
-                 [&](const model::LuGreFriction& f) {
-                   const double stribeck =
-                       f.coulomb + (f.static_torque - f.coulomb) *
-                                       std::exp(-std::pow(omega_in / f.stribeck_speed, 2));
-                   return stribeck * std::tanh(omega_in / 1e-3) + f.sigma2 * omega_in;
-                 }},
-      params_.friction);
+double SimulatedBenchPlant::friction_torque(double omega) const {
+  if (const auto* cs = std::get_if<model::CoulombStribeck>(&friction_)) return cs->torque(omega);
+  if (const auto* lg = std::get_if<model::LuGre>(&friction_)) {
+    return lg->evaluate(omega, law_.bristle).torque;
+  }
+  return 0.0;
 }
 
 void SimulatedBenchPlant::step(double dt) {
@@ -198,6 +158,25 @@ void SimulatedBenchPlant::step(double dt) {
   const int n = std::max(1, static_cast<int>(std::ceil(dt / max_substep_ - 1e-9)));
   const double h = dt / n;
   for (int i = 0; i < n; ++i) substep(h);
+}
+
+void SimulatedBenchPlant::update_branch(double x, double twist_rate, double spring,
+                                        bool in_contact) {
+  // GearModel locates these events; at a fixed step they are taken at the first step past
+  // them, anchored where the torque is then so that it stays continuous.
+  if (!in_contact) {
+    // Out of contact the element unloads completely; the next contact starts a virgin curve.
+    law_.anchor = {0.0, 0.0, true};
+    return;
+  }
+  const double direction = sign_of(twist_rate);
+  if (direction != 0 && direction != law_.twist_direction) {
+    law_.twist_direction = direction;
+    law_.anchor = {x, spring, model::HystereticBranchSpring::loading_after(spring, direction)};
+  } else if (!law_.anchor.loading && sign_of(spring) != sign_of(law_.anchor.torque)) {
+    // The torque crossed zero while unloading: the element loads again the other way.
+    law_.anchor = {x, spring, true};
+  }
 }
 
 void SimulatedBenchPlant::substep(double h) {
@@ -212,18 +191,21 @@ void SimulatedBenchPlant::substep(double h) {
           : model::defect_excitation(params_.defects, params_.geometry, s.theta_in, s.theta_out,
                                      s.omega_in, s.omega_out,
                                      s.output_travel_rad / (2 * std::numbers::pi));
-  const double e = te_excitation(s.theta_in, s.theta_out) + defect.value;
-  const double twist = s.theta_in / n - s.theta_out - e;
-  const double twist_rate = s.omega_in / n - s.omega_out -
-                            te_rate(s.theta_in, s.theta_out, s.omega_in, s.omega_out) - defect.rate;
-  const double x = backlash_filter(twist);
-  double tg = 0;
-  if (x != 0) {
-    const double spring = stiffness_torque(x, s.theta_in, s.theta_out);
-    tg = spring + damping_ * twist_rate;
-    // In contact the mesh cannot pull (ElastoBacklash): damping never reverses the torque.
-    tg = x > 0 ? std::max(tg, 0.0) : std::min(tg, 0.0);
-  }
+  const model::TeValue e = te_.evaluate(s.theta_in, s.theta_out, s.omega_in, s.omega_out);
+  const double twist = s.theta_in / n - s.theta_out - e.value - defect.value;
+  const double twist_rate = s.omega_in / n - s.omega_out - e.rate - defect.rate;
+  const model::DeadZoneValue dz = dead_zone_.evaluate(twist);
+  const double x = dz.x;
+  const double x_rate = dz.slope * twist_rate;
+  const double spring = stiffness_torque(x, s.theta_in, s.theta_out);
+  const double damping = damping_ * x_rate;
+  // In contact the mesh cannot pull (ElastoBacklash): damping never reverses the torque.
+  const double tg = dead_zone_.has_clearance()
+                        ? model::limit_backlash_torque(sign_of(x), spring, damping)
+                        : spring + damping;
+
+  const double friction_speed = output_friction_ ? s.omega_out : s.omega_in;
+  const double friction = friction_torque(friction_speed);
 
   const auto& load = params_.load;
   const double t_load = load.output_torque.offset +
@@ -234,14 +216,19 @@ void SimulatedBenchPlant::substep(double h) {
                         load.drive_ripple.amplitude *
                             std::sin(2 * std::numbers::pi * load.drive_ripple.frequency_hz * s.t +
                                      load.drive_ripple.phase_rad);
-  const double drag = load.output_drag_coulomb * std::tanh(s.omega_out / load.drag_smoothing_speed);
+  const double drag =
+      load.output_drag_coulomb == 0
+          ? 0.0
+          : load.output_drag_coulomb * std::tanh(s.omega_out / load.drag_smoothing_speed);
 
-  const double acc_in = (s.motor_torque + ripple - params_.viscous_input * s.omega_in -
-                         friction_torque(s.omega_in) - tg / n) /
-                        j1;
+  const double input_friction = output_friction_ ? 0.0 : friction;
+  const double output_friction = output_friction_ ? friction : 0.0;
+  const double acc_in =
+      (s.motor_torque + ripple - params_.viscous_input * s.omega_in - input_friction - tg / n) / j1;
   // The brake is a set-valued friction: it holds the output still when the other torques stay
   // within its setting, and slips against the motion otherwise (time-stepping friction).
-  const double free_torque = tg - params_.viscous_output * s.omega_out - drag - t_load;
+  const double free_torque =
+      tg - params_.viscous_output * s.omega_out - drag - t_load - output_friction;
   const double omega_free = s.omega_out + h * free_torque / j2;
   const double hold = h * brake_limit_ / j2;
   double brake = 0;
@@ -249,6 +236,24 @@ void SimulatedBenchPlant::substep(double h) {
     brake = -omega_free * j2 / h;
   } else {
     brake = -std::copysign(brake_limit_, omega_free);
+  }
+
+  // The laws' own state, forward over the step.
+  switch (spring_.index()) {
+    case 1:
+      update_branch(x, twist_rate, spring, !dead_zone_.has_clearance() || x != 0);
+      break;
+    case 2:
+      law_.memory += h * std::get<2>(spring_).memory_rate(x_rate, law_.memory);
+      break;
+    case 3:
+      law_.memory += h * std::get<3>(spring_).hysteretic_rate(x_rate, law_.memory);
+      break;
+    default:
+      break;
+  }
+  if (const auto* lg = std::get_if<model::LuGre>(&friction_)) {
+    law_.bristle = lg->bristle_after(friction_speed, law_.bristle, h);
   }
 
   s.omega_in += h * acc_in;
@@ -263,6 +268,7 @@ void SimulatedBenchPlant::substep(double h) {
   s.motor_torque = motor_torque_;
   s.brake_torque = brake;
   s.shaft_torque = t_load - brake;
+  s.friction_torque = friction;
 }
 
 model::GearParams default_bench_gear() {

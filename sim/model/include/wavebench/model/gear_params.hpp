@@ -113,7 +113,7 @@ struct MeshDamping {
   std::optional<double> damping_ratio;  // zeta: c = 2 zeta sqrt(J_eq K-bar)
 };
 
-// --- Friction at the wave generator (model.md §6) ----------------------------------------
+// --- Friction (model.md §6): at the wave generator, or at the output bearing ---------------
 struct NoFriction {};
 struct CoulombStribeckFriction {
   double coulomb = 0, static_torque = 0, stribeck_speed = 1, viscous = 0;
@@ -124,6 +124,8 @@ struct LuGreFriction {
   double coulomb = 0, static_torque = 0, stribeck_speed = 1;
 };
 using FrictionLaw = std::variant<NoFriction, CoulombStribeckFriction, LuGreFriction>;
+// Which shaft the friction law's speed is and which inertia its torque acts on.
+enum class FrictionSide { kInput, kOutput };
 
 // --- Input drive (model.md §2) ------------------------------------------------------------
 struct Sinusoid {  // offset + amplitude sin(2 pi f t + phase)
@@ -205,6 +207,7 @@ struct GearParams {
   BacklashParams backlash;
   MeshDamping damping;
   FrictionLaw friction = NoFriction{};
+  FrictionSide friction_side = FrictionSide::kInput;
   InputDrive input = KinematicInput{};
   LoadParams load;
   double nominal_input_speed = 0;  // [rad/s] reference motion for deviation coordinates

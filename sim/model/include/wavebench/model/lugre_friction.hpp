@@ -17,6 +17,9 @@ class LuGre {
   explicit LuGre(const LuGreFriction& p);
   LuGreState evaluate(double omega, double s) const noexcept;
   double steady_deflection() const noexcept;  // T_c / sigma0, the bristle state's size
+  // s after h at constant omega: the bristle equation is linear in s then, solved exactly, so
+  // a fixed-step stepper stays stable however fast the bristles relax.
+  double bristle_after(double omega, double s, double h) const noexcept;
 
  private:
   LuGreFriction p_;
