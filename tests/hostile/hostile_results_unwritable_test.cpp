@@ -182,11 +182,17 @@ TEST(HostileResultsUnwritable, ARunWhoseFolderTurnsUnwritableEndsAbortedNamingTh
   }
   EXPECT_FALSE(fs::exists(paths.dir / "report.html"));
 
-  // The bench safe: inactive, drive not enabled, brake output off (the acquisition figures
-  // are refreshed while the bench idles: the newest within a few seconds).
+  // The bench safe: inactive, drive not enabled, brake output off. The acquisition figures are
+  // readbacks refreshed while the bench idles, so the one read at the abort may predate the
+  // switch-off: wait (bounded) for readbacks that say safe; a bench left unsafe fails below.
+  const auto unsafe_readback = [](const nlohmann::json& s) {
+    const auto& a = s["acquisition"];
+    if (!a.is_object()) return false;
+    return a.value("drive_state", std::string()) == "operation enabled" ||
+           (a["brake_output_on"].is_boolean() && a["brake_output_on"].get<bool>());
+  };
   const auto safe_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (std::chrono::steady_clock::now() < safe_deadline && status["acquisition"].is_object() &&
-         status["acquisition"].value("drive_state", std::string()) == "operation enabled") {
+  while (std::chrono::steady_clock::now() < safe_deadline && unsafe_readback(status)) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     status = client.get("/api/status").body;
   }
