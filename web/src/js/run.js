@@ -8,6 +8,8 @@ import { awaitResults } from './run_progress.js';
 import { uncertain, plusMinus, figureText, utcSeconds, limitName, whereText } from './figures.js';
 import { readRun } from './run_reads.js';
 import { exportButtons } from './run_exports.js';
+import { get } from './api.js';
+import { declaredFiguresOf, declaredFiguresSection } from './declared_figures.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
 const main = document.getElementById('run');
@@ -512,6 +514,9 @@ async function main_() {
   const sections = [header(run, results)];
   const limits = limitChecks(results);
   if (limits) sections.push(limits);
+  // Every figure the procedure declares (src/figures), as GET /api/procedures serves them.
+  const figures = declaredFiguresSection(await declaredFiguresOf(get, run.procedure), results);
+  if (figures) sections.push(figures);
   if (results.warnings && results.warnings.length) {
     sections.push(el('div', { class: 'warning' }, results.warnings.map((w) => el('p', {}, w))));
   }
