@@ -17,7 +17,8 @@ using nlohmann::json;
 // Arrays kept in the run folder only: the shared store holds figures, not curves.
 bool bulky(const std::string& key) {
   return key == "trace" || key == "points" || key == "order_spectrum" || key == "mean_curve" ||
-         key == "revolutions" || key == "residual_before" || key == "residual_after";
+         key == "revolutions" || key == "residual_before" || key == "residual_after" ||
+         key == "fit_curve";
 }
 
 json without_bulky(const json& value) {

@@ -20,9 +20,10 @@ std::optional<double> expanded_of(const figures::FigureAt& at) {
 }  // namespace
 
 HtmlTable declared_figures_table(const std::string& procedure, const nlohmann::json& results) {
-  HtmlTable t{"Figures", {"figure", "measured at", "value \u00b1 U (k = 2)", "unit", "spec limit",
-                          "fleet trend"},
-              {}};
+  HtmlTable t{
+      "Figures",
+      {"figure", "measured at", "value \u00b1 U (k = 2)", "unit", "spec limit", "fleet trend"},
+      {}};
   for (const auto* d : figures::figures_of(procedure)) {
     for (const auto& at : figures::find_figure_values(results, d->path)) {
       const auto v = figures::number_of(*at.value);

@@ -4,8 +4,8 @@
 #include <stdexcept>
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
-#include "wavebench/report/dynamic_plot_data.hpp"
 #include "wavebench/report/declared_figures_table.hpp"
+#include "wavebench/report/dynamic_plot_data.hpp"
 #include "wavebench/report/endurance_section.hpp"
 #include "wavebench/report/run_plots.hpp"
 #include "wavebench/report/run_tables.hpp"

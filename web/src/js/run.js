@@ -376,25 +376,12 @@ function torsionalSections(results) {
       pairs.push([voided.map((p) => p.torque_nm), voided.map((p) => p.twist_arcmin)]);
       series.push({ label: 'voided (slip)', color: palette[6], points: true });
     }
-    const mean = t.mean_curve || { torque_nm: [], twist_arcmin: [] };
-    const fit = {
-      t1_nm: k.t1_nm && k.t1_nm.value, t2_nm: k.t2_nm && k.t2_nm.value,
-      k1_nm_per_rad: k.k1_nm_per_rad && k.k1_nm_per_rad.value,
-      k2_nm_per_rad: k.k2_nm_per_rad && k.k2_nm_per_rad.value,
-      k3_nm_per_rad: k.k3_nm_per_rad && k.k3_nm_per_rad.value,
-    };
-    if (fit.k1_nm_per_rad > 0 && fit.k2_nm_per_rad > 0 && fit.k3_nm_per_rad > 0) {
-      // Each side of zero at the mean curve's own offset (median), as the report draws it.
-      [1, -1].forEach((side) => {
-        const idx = mean.torque_nm.map((_, i) => i).filter((i) => side * mean.torque_nm[i] > 0);
-        if (!idx.length) return;
-        const offsets = idx.map((i) => mean.twist_arcmin[i] - twistAt(fit, mean.torque_nm[i]) * ARCMIN_PER_RAD).sort((a, b) => a - b);
-        const o = offsets[Math.floor(offsets.length / 2)];
-        const end = Math.max(...idx.map((i) => Math.abs(mean.torque_nm[i])));
-        const ts = Array.from({ length: 101 }, (_, j) => (side * end * j) / 100);
-        pairs.push([ts, ts.map((x) => o + twistAt(fit, x) * ARCMIN_PER_RAD)]);
-        series.push({ label: side > 0 ? 'fit K1/K2/K3, T > 0' : 'fit K1/K2/K3, T < 0', color: palette[3], width: 2, spanGaps: true });
-      });
+    // The fitted curve as results.json carries it (each side of zero at its own offset,
+    // computed once by the procedure): drawn, not recomputed.
+    for (const side of Array.isArray(t.fit_curve) ? t.fit_curve : []) {
+      if (!Array.isArray(side.torque_nm) || !Array.isArray(side.twist_arcmin)) continue;
+      pairs.push([side.torque_nm, side.twist_arcmin]);
+      series.push({ label: side.side === 'negative' ? 'fit K1/K2/K3, T < 0' : 'fit K1/K2/K3, T > 0', color: palette[3], width: 2, spanGaps: true });
     }
     makePlot(box.querySelector('.plot-area'), {
       xLabel: 'torque [N·m]', yLabel: 'twist θ_in/N − θ_out [arcmin]', series, data: joinSeries(pairs), height: 360,
