@@ -254,18 +254,6 @@ function dynamicSections(results) {
   return out;
 }
 
-// The three-segment stiffness (K1 to T1, K2 to T2, K3 beyond), odd in the torque [rad].
-function twistAt(k, t) {
-  const a = Math.abs(t);
-  const s1 = Math.min(a, k.t1_nm);
-  const s2 = Math.max(0, Math.min(a, k.t2_nm) - k.t1_nm);
-  const s3 = Math.max(0, a - k.t2_nm);
-  const phi = s1 / k.k1_nm_per_rad + s2 / k.k2_nm_per_rad + s3 / k.k3_nm_per_rad;
-  return t >= 0 ? phi : -phi;
-}
-
-const ARCMIN_PER_RAD = (180 * 60) / Math.PI;
-
 function lostMotionFitSections(results) {
   const f = results.lost_motion_fit;
   if (!f) return [];
@@ -288,7 +276,6 @@ function lostMotionFitSections(results) {
     ], { id: 'lost-motion-fit-table' }),
     box);
   const points = f.points || [];
-  const fitted = k.k1_nm_per_rad > 0 && k.k2_nm_per_rad > 0 && k.k3_nm_per_rad > 0;
   s.draws = [() => {
     const branches = [1, -1].map((travel) => points.filter((p) => p.travel === travel));
     const pairs = branches.map((b) => [b.map((p) => p.twist_arcmin), b.map((p) => p.torque_nm)]);
@@ -296,18 +283,13 @@ function lostMotionFitSections(results) {
       { label: 'measured, forward', color: palette[0], points: true },
       { label: 'measured, reverse', color: palette[1], points: true },
     ];
-    if (fitted) {
-      // Each branch's fit sits where its points do about the fitted compliance (median offset).
-      branches.forEach((b, i) => {
-        if (!b.length) return;
-        const offsets = b.map((p) => p.twist_arcmin - twistAt(k, p.torque_nm) * ARCMIN_PER_RAD).sort((x, y) => x - y);
-        const o = offsets[Math.floor(offsets.length / 2)];
-        const lo = Math.min(0, ...b.map((p) => p.torque_nm));
-        const hi = Math.max(0, ...b.map((p) => p.torque_nm));
-        const ts = Array.from({ length: 201 }, (_, j) => lo + ((hi - lo) * j) / 200);
-        pairs.push([ts.map((t) => o + twistAt(k, t) * ARCMIN_PER_RAD), ts]);
-        series.push({ label: `fit K1/K2/K3, ${i ? 'reverse' : 'forward'}`, color: palette[i ? 3 : 2], width: 2, spanGaps: true });
-      });
+    // The fitted model per travel branch as results.json carries it (computed once by the
+    // procedure): drawn, not recomputed.
+    for (const b of Array.isArray(f.fit_curve) ? f.fit_curve : []) {
+      if (!Array.isArray(b.torque_nm) || !Array.isArray(b.twist_arcmin)) continue;
+      const reverse = b.travel < 0;
+      pairs.push([b.twist_arcmin, b.torque_nm]);
+      series.push({ label: `fit K1/K2/K3, ${reverse ? 'reverse' : 'forward'}`, color: palette[reverse ? 3 : 2], width: 2, spanGaps: true });
     }
     makePlot(box.querySelector('.plot-area'), {
       xLabel: 'twist [arcmin]', yLabel: 'torque [N·m]', series, data: joinSeries(pairs),
