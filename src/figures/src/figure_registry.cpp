@@ -4,6 +4,15 @@
 
 namespace wavebench::figures {
 
+// One procedure's declarations, each in its own <procedure>_figures.cpp: a new procedure's
+// figures are that file and one line here and in kSources.
+std::span<const FigureDeclaration> static_te_figures();
+std::span<const FigureDeclaration> dynamic_te_figures();
+std::span<const FigureDeclaration> lost_motion_figures();
+std::span<const FigureDeclaration> torsional_figures();
+std::span<const FigureDeclaration> endurance_figures();
+std::span<const FigureDeclaration> twin_figures();
+
 namespace {
 
 // The procedures' declarations; the twin's last (any procedure may calibrate the twin beside

@@ -11,14 +11,6 @@
 
 namespace wavebench::figures {
 
-// One procedure's declarations (each in its own <procedure>_figures.cpp).
-std::span<const FigureDeclaration> static_te_figures();
-std::span<const FigureDeclaration> dynamic_te_figures();
-std::span<const FigureDeclaration> lost_motion_figures();
-std::span<const FigureDeclaration> torsional_figures();
-std::span<const FigureDeclaration> endurance_figures();
-std::span<const FigureDeclaration> twin_figures();
-
 // All of them, procedure by procedure.
 std::span<const FigureDeclaration> declared_figures();
 // The figures a run of `procedure` may report: its own and those of any procedure ("*").
