@@ -284,7 +284,7 @@ TYPED_TEST_P(ResultsStoreContract, EveryDeclaredTrendIsStoredListedAndTrended) {
   for (std::size_t i = 0; i < trends.size(); ++i) {
     SCOPED_TRACE(trends[i].name);
     ASSERT_TRUE(rows[0].figures.contains(trends[i].name));
-    EXPECT_EQ(rows[0].figures[trends[i].name].get<double>(), 1.0 + i / 8.0);
+    EXPECT_EQ(rows[0].figures[trends[i].name], nlohmann::json(1.0 + i / 8.0));
     const auto points = this->store_->trend(this->figure(trends[i].name));
     ASSERT_EQ(points.size(), 1u);
     EXPECT_EQ(points[0].value, 1.0 + i / 8.0);
