@@ -12,12 +12,12 @@ using strict_yaml::Dimension;
 using units::kArcmin;
 using units::kNmPerRad;
 
-constexpr FigureDeclaration stiffness(const char* name, const char* key, const char* label,
-                                      SpecLimit limit, FleetTrend fleet) {
+constexpr FigureDeclaration stiffness(const char* name, const char* key, const char* uncertainty,
+                                      const char* label, SpecLimit limit, FleetTrend fleet) {
   return {.name = name,
           .procedure = "lost-motion",
           .path = key,
-          .uncertainty_path = "",
+          .uncertainty_path = uncertainty,
           .label = label,
           .dimension = Dimension::kStiffness,
           .unit = "N*m/rad",
@@ -47,11 +47,14 @@ constexpr std::array kFigures{
                                 "lost motion (lost-motion procedure, else torsional)"},
                       .plot = PlotKind::kValue},
     stiffness("min_k1", "lost_motion_fit.stiffness.k1_nm_per_rad",
+              "lost_motion_fit.stiffness.uncertainty.k1_nm_per_rad",
               "Torsional stiffness K1 (minimum)", {LimitKind::kLower, "min_stiffness_nm_per_rad"},
               {"k1", "k1_nm_per_rad", "stiffness K1"}),
-    stiffness("k2", "lost_motion_fit.stiffness.k2_nm_per_rad", "Torsional stiffness K2", {},
+    stiffness("k2", "lost_motion_fit.stiffness.k2_nm_per_rad",
+              "lost_motion_fit.stiffness.uncertainty.k2_nm_per_rad", "Torsional stiffness K2", {},
               {"k2", "k2_nm_per_rad", "stiffness K2"}),
-    stiffness("k3", "lost_motion_fit.stiffness.k3_nm_per_rad", "Torsional stiffness K3", {},
+    stiffness("k3", "lost_motion_fit.stiffness.k3_nm_per_rad",
+              "lost_motion_fit.stiffness.uncertainty.k3_nm_per_rad", "Torsional stiffness K3", {},
               {"k3", "k3_nm_per_rad", "stiffness K3"}),
 };
 
