@@ -51,7 +51,9 @@ constexpr FigureDeclaration stiffness(const char* name, const char* key, const c
 
 constexpr std::array kFigures{
     angle("hysteresis_loss", "torsional.hysteresis_loss_arcmin", "Hysteresis loss",
-          {LimitKind::kUpper, "hysteresis_loss_arcmin"}, {}),
+          {LimitKind::kUpper, "hysteresis_loss_arcmin"},
+          {"hysteresis_loss", "hysteresis_loss_arcmin",
+           "hysteresis loss (torsional: twist width at zero torque)"}),
     angle("locked_lost_motion", "torsional.lost_motion_arcmin", "Lost motion (locked output)",
           {LimitKind::kUpper, "locked_lost_motion_arcmin"},
           {"lost_motion", "lost_motion_arcmin",
