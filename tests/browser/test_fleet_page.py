@@ -94,6 +94,19 @@ class FleetPageTest(ConsolePageTest):
         self.assertIn("USL", legend)
         self.assertEqual(self.browser.find_elements(By.ID, "limits-not-drawn"), [])
 
+    def test_4_the_figure_selector_offers_every_declared_trend(self):
+        # The trends come from the figure declarations (src/figures) through /api/fleet/figures
+        # and /api/procedures: each declared fleet trend is offered, nothing else.
+        _, served = self.daemon.request("GET", "/api/fleet/figures")
+        _, catalogue = self.daemon.request("GET", "/api/procedures")
+        declared = {f["fleet"]["name"] for p in catalogue["procedures"] for f in p["figures"] if f["fleet"]}
+        self.assertEqual({f["name"] for f in served["figures"]}, declared)
+        self.api_spc()
+        self.open("/fleet?" + urllib.parse.urlencode({"model": "CSG-99", "figure": "static_te_p2p"}))
+        options = [o.get_attribute("value") for o in
+                   self.browser.find_elements(By.CSS_SELECTOR, "#fleet-form select[name=figure] option")]
+        self.assertEqual(set(options), declared)
+
     def test_3_a_model_without_runs_says_so(self):
         self.api_spc()
         self.open("/fleet?" + urllib.parse.urlencode({"model": "CSG-99", "figure": "static_te_p2p"}))

@@ -3,7 +3,9 @@
 in-process simulated bench: two short static runs are made through the API, then
 - the run page shows the header, the verdict, the static table and its plots, and the trace
   endpoint's TE plot; in print media the navigation and buttons are gone;
-- the history lists both runs, a procedure filter with no match shows none, and ticking both
+- the figure table shows every figure the procedure declares (GET /api/procedures), and a
+  figure declared anew (here: injected into /api/procedures' answer) shows without a JS edit;
+- the history's procedures come from /api/procedures; it lists both runs, a procedure filter with no match shows none, and ticking both
   opens compare, which draws both runs' static curves on one plot with a legend per run.
 Screenshots go to <build>/test-output/browser/.
 
@@ -179,6 +181,60 @@ class RunPagesTest(ConsolePageTest):
         legend = self.browser.find_element(By.CSS_SELECTOR, "#static-plot .u-legend").text
         self.assertIn("forward", legend)
         self.assertIn("reverse", legend)
+
+    def figure_rows(self):
+        return {r.find_element(By.CSS_SELECTOR, "td span").get_attribute("title"): r
+                for r in self.browser.find_elements(By.CSS_SELECTOR, "#figure-table tbody tr")}
+
+    def test_figure_table_shows_the_declared_figures(self):
+        _, catalogue = self.daemon.request("GET", "/api/procedures")
+        static = next(p for p in catalogue["procedures"] if p["name"] == "static")
+        own = {f["name"] for f in static["figures"] if f["procedure"] == "static"}
+        every = {f["name"] for f in static["figures"]}  # with the twin's, when it calibrated
+        self.assertIn("static_te_p2p", own)
+        self.open(f"/run?id={self.runs[0]}")
+        rows = self.browser.find_elements(By.CSS_SELECTOR, "#figure-table tbody tr")
+        names = [r.find_element(By.CSS_SELECTOR, "td span").get_attribute("title") for r in rows]
+        self.assertLessEqual(own, set(names))
+        self.assertLessEqual(set(names), every)
+        self.assertEqual(names.count("static_te_p2p"), 2)  # per pass: forward and reverse
+
+    def test_a_newly_declared_figure_shows_without_js_edits(self):
+        # A declaration the daemon does not (yet) serve, added to its answer before the page's
+        # scripts run: the page must draw it from the declaration alone.
+        probe = {"name": "probe_p2p_arcsec", "procedure": "static", "path": "static[*].p2p_arcmin",
+                 "uncertainty_path": "static[*].uncertainty.p2p_arcmin",
+                 "label": "Probe: static TE p2p in arcsec", "unit": "arcmin", "display_unit": "arcsec",
+                 "display_scale": 60, "display_digits": 4, "limit": None,
+                 "fleet": {"name": "probe", "column": "probe_arcsec", "what": "probe"}, "plot": "per_element"}
+        script = """
+const realFetch = window.fetch;
+window.fetch = async (input, init) => {
+  const r = await realFetch(input, init);
+  if (!String(input).endsWith('/api/procedures')) return r;
+  const body = await r.clone().json();
+  for (const p of body.procedures) if (p.name === 'static') p.figures.push(%s);
+  return new Response(JSON.stringify(body), { status: r.status, headers: { 'Content-Type': 'application/json' } });
+};""" % json.dumps(probe)
+        added = self.browser.execute_cdp_cmd("Page.addScriptToEvaluateOnNewDocument", {"source": script})
+        try:
+            self.open(f"/run?id={self.runs[0]}")
+            self.shot("run-page-declared-figure")
+            rows = [r for r in self.browser.find_elements(By.CSS_SELECTOR, "#figure-table tbody tr")
+                    if r.find_element(By.CSS_SELECTOR, "td span").get_attribute("title") == probe["name"]]
+            self.assertEqual(len(rows), 2)
+            _, detail = self.daemon.request("GET", f"/api/runs/{self.runs[0]}")
+            passes = detail["results"]["static"]
+            for row, p in zip(rows, passes):
+                cells = [c.text for c in row.find_elements(By.TAG_NAME, "td")]
+                self.assertEqual(cells[0], probe["label"])
+                self.assertEqual(cells[3], "arcsec")
+                shown = float(cells[2].split(" ")[0])
+                self.assertAlmostEqual(shown, p["p2p_arcmin"] * 60, delta=abs(p["p2p_arcmin"] * 60) * 0.01 + 1e-9)
+                self.assertEqual(cells[5], "probe")
+        finally:
+            self.browser.execute_cdp_cmd("Page.removeScriptToEvaluateOnNewDocument",
+                                         {"identifier": added["identifier"]})
 
     def test_dynamic_run_page_draws_spectrum_twin_and_zooms_to_every_sample(self):
         self.open(f"/run?id={self.dynamic}")

@@ -26,6 +26,14 @@ TEST_F(CatalogueApiTest, ProceduresServeTheirOptionsSchemaWithoutAToken) {
   EXPECT_EQ(rpm["default"], 100);
   EXPECT_EQ(rpm["minimum"], 0);
   EXPECT_EQ(rpm["exclusive_minimum"], true);
+  // Each procedure's declared figures (src/figures, issue #23): what the run page draws.
+  bool hysteresis = false;
+  for (const auto& f : list[3]["figures"]) {
+    hysteresis |= f["name"] == "hysteresis_loss" &&
+                  f["path"] == "torsional.hysteresis_loss_arcmin" &&
+                  f["limit"]["key"] == "hysteresis_loss_arcmin" && f["display_unit"] == "arcmin";
+  }
+  EXPECT_TRUE(hysteresis) << list[3]["figures"].dump();
   EXPECT_EQ(client().post("/api/procedures").status, 405);
 }
 

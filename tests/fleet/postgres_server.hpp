@@ -93,6 +93,13 @@ class PostgresServer {
             " -p 5432 -U wavebench -d postgres -c 'CREATE DATABASE " + name + "'",
         false);
   }
+  // One statement on `database` through psql (what an older build's schema looked like).
+  void sql(const std::string& database, const std::string& statement) const {
+    run("PGPASSWORD=" + std::string(kPassword) + " " + kPgBin +
+            "/psql -X -q -v ON_ERROR_STOP=1 -h " + dir_.string() + " -p 5432 -U wavebench -d " +
+            database + " -c \"" + statement + "\"",
+        false);
+  }
   const std::filesystem::path& dir() const { return dir_; }
   std::string log() const {
     std::ifstream in(dir_ / "server.log");

@@ -66,6 +66,37 @@ TEST_F(PostgresStore, MigrationsApplyOnceAndAgainChangeNothing) {
   EXPECT_TRUE(second.runs(all).empty());
 }
 
+// A store written before a figure's trend was declared lacks its column: opening it adds the
+// column (a step computed from the declarations), the old rows stay readable, new runs fill it.
+TEST_F(PostgresStore, ANewlyDeclaredFigureColumnIsAddedToAnOldStore) {
+  const auto dir = testing::fresh_dir("PgNewColumn");
+  storage::RunStore local(dir, "test");
+  testing::SyntheticRun synthetic;
+  synthetic.lost_motion_arcmin = 0.41;
+  const auto old_id = testing::add_synthetic_run(local, synthetic);
+  {
+    PostgresResultsStore store(config());
+    ASSERT_TRUE(store.publish(summarise_run(
+        *local.find_run(old_id), testing::synthetic_results(old_id, synthetic), {"bench-a", ""})));
+  }
+  server_->sql("wavebench", "ALTER TABLE fleet_runs DROP COLUMN static_lost_motion_arcmin");
+  PostgresResultsStore store(config());
+  EXPECT_EQ(store.schema_version(), fleet_schema_version());
+  FleetRunQuery all;
+  const auto rows = store.runs(all);
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0].run_id, old_id);
+  EXPECT_FALSE(rows[0].figures.contains("static_lost_motion"));  // dropped with its column
+  synthetic.lost_motion_arcmin = 0.43;
+  const auto new_id = testing::add_synthetic_run(local, synthetic);
+  ASSERT_TRUE(store.publish(summarise_run(
+      *local.find_run(new_id), testing::synthetic_results(new_id, synthetic), {"bench-a", ""})));
+  const auto points = store.trend(figure("static_lost_motion", synthetic.model));
+  ASSERT_EQ(points.size(), 1u);
+  EXPECT_EQ(points[0].run_id, new_id);
+  EXPECT_DOUBLE_EQ(points[0].value, 0.43);
+}
+
 TEST_F(PostgresStore, PublishIsIdempotentAndKeepsTypedFigures) {
   const auto dir = testing::fresh_dir("PgPublish");
   storage::RunStore local(dir, "test");

@@ -17,6 +17,7 @@
 
 #include "spc_hand_worked.hpp"
 #include "synthetic_runs.hpp"
+#include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/results_store.hpp"
 
 namespace wavebench::fleet::testing {
@@ -263,8 +264,36 @@ TYPED_TEST_P(ResultsStoreContract, SpcEqualsTheHandWorkedExample) {
   EXPECT_EQ(to_json(this->store_->spc(q, {}))["spc"], nullptr);
 }
 
+// Every trend the figure declarations name (a newly declared one included, without an edit
+// here) is a column the store writes, lists and trends.
+TYPED_TEST_P(ResultsStoreContract, EveryDeclaredTrendIsStoredListedAndTrended) {
+  SyntheticRun r;
+  const nlohmann::json limits = {{"static_p2p_arcmin", r.p2p_limit_arcmin}};
+  const auto id =
+      this->local_.create_run("static", r.unit, "name: sim\n", limits.dump(), "csf-25-100");
+  this->local_.write_results(id, synthetic_results(id, r));
+  this->local_.finish_run(id, storage::RunStatus::kComplete, "", true, "PASS");
+  auto summary =
+      summarise_run(*this->local_.find_run(id), synthetic_results(id, r), {"bench-a", "line-1"});
+  const auto& trends = fleet_figures();
+  ASSERT_FALSE(trends.empty());
+  for (std::size_t i = 0; i < trends.size(); ++i) summary.figures[trends[i].name] = 1.0 + i / 8.0;
+  ASSERT_TRUE(this->store_->publish(summary));
+  const auto rows = this->store_->runs(FleetRunQuery{});
+  ASSERT_EQ(rows.size(), 1u);
+  for (std::size_t i = 0; i < trends.size(); ++i) {
+    SCOPED_TRACE(trends[i].name);
+    ASSERT_TRUE(rows[0].figures.contains(trends[i].name));
+    EXPECT_EQ(rows[0].figures[trends[i].name], nlohmann::json(1.0 + i / 8.0));
+    const auto points = this->store_->trend(this->figure(trends[i].name));
+    ASSERT_EQ(points.size(), 1u);
+    EXPECT_EQ(points[0].value, 1.0 + i / 8.0);
+  }
+}
+
 REGISTER_TYPED_TEST_SUITE_P(ResultsStoreContract, PublishIsIdempotentAndKeepsTheRunsRow,
                             RunsFilterLimitAndNewestFirst, TrendPerBenchPerPassAndTheNewestN,
-                            SpcEqualsTheHandWorkedExample);
+                            SpcEqualsTheHandWorkedExample,
+                            EveryDeclaredTrendIsStoredListedAndTrended);
 
 }  // namespace wavebench::fleet::testing

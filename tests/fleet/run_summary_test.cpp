@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include "synthetic_runs.hpp"
+#include "wavebench/fleet/fleet_figures.hpp"
 
 namespace wavebench::fleet {
 namespace {
@@ -74,6 +75,28 @@ TEST(RunSummary, TorsionalUncertainFiguresAndTwinResiduals) {
   EXPECT_EQ(s.gear_model, "");
   EXPECT_FALSE(s.results["torsional"].contains("points"));
   EXPECT_FALSE(s.results["torsional"].contains("mean_curve"));
+}
+
+// Issue #23 acceptance: the torsional hysteresis loss is trended in the fleet view against its
+// spec limit (its declaration names the trend; the columns, the selector and the SPC follow).
+TEST(RunSummary, TorsionalHysteresisLossIsTrendedAgainstItsSpecLimit) {
+  const auto run = record("torsional");
+  const nlohmann::json results = {
+      {"torsional",
+       {{"hysteresis_loss_arcmin", {{"value", 0.354}, {"expanded", 0.009}}},
+        {"lost_motion_arcmin", {{"value", 0.8}, {"expanded", 0.05}}}}}};
+  const auto s = summarise_run(run, results, {});
+  EXPECT_DOUBLE_EQ(s.figures.at("hysteresis_loss"), 0.354);
+  const auto& trend = find_fleet_figure("hysteresis_loss");
+  EXPECT_STREQ(trend.column, "hysteresis_loss_arcmin");
+  EXPECT_STREQ(trend.unit, "arcmin");
+  EXPECT_STREQ(trend.limit_key, "hysteresis_loss_arcmin");  // the spec limit an SPC takes
+  EXPECT_FALSE(trend.limit_is_minimum);
+  // A static run has none.
+  testing::SyntheticRun synthetic;
+  const auto other = record("static");
+  EXPECT_FALSE(summarise_run(other, testing::synthetic_results(other.id, synthetic), {})
+                   .figures.contains("hysteresis_loss"));
 }
 
 TEST(RunSummary, RunWithoutResultsSendsItsRowAlone) {

@@ -3,7 +3,11 @@ bench, against docs/formats/results.schema.json, checked by an independent valid
 (Debian's python3-jsonschema). A results.json with a wrong type, a missing required key or an
 unknown key must be refused, so that the check itself can fail.
 
-Usage: /usr/bin/python3 results_schema_test.py WAVEBENCH_CLI SOURCE_DIR WORK_DIR
+Every declared figure (src/figures, printed by FIGURE_DECLARATIONS) must resolve in a real
+results.json of its procedure, its uncertainty where it says, and its path must be one the
+schema describes.
+
+Usage: /usr/bin/python3 results_schema_test.py WAVEBENCH_CLI SOURCE_DIR WORK_DIR FIGURE_DECLARATIONS
 """
 
 import copy
@@ -27,6 +31,78 @@ def errors_of(validator, instance):
         ("/".join(str(p) for p in e.absolute_path) or "(top)") + ": " + e.message
         for e in validator.iter_errors(instance)
     )
+
+
+def resolve(node, parts):
+    """Every value a declaration's path (keys, `name[*]` every element) reaches; null left out."""
+    if not parts or not isinstance(node, dict):
+        return []
+    key, rest = parts[0], parts[1:]
+    every = key.endswith("[*]")
+    key = key[:-3] if every else key
+    if key not in node:
+        return []
+    item = node[key]
+    if every:
+        return [v for e in item for v in resolve(e, rest)] if isinstance(item, list) and rest else []
+    if rest:
+        return resolve(item, rest)
+    return [] if item is None else [item]
+
+
+def schema_has(schema, node, parts):
+    """The schema describes the path (properties, items and $ref followed)."""
+    while isinstance(node, dict) and "$ref" in node:
+        node = schema["$defs"][node["$ref"].split("/")[-1]]
+    if not parts:
+        return True
+    key = parts[0]
+    every = key.endswith("[*]")
+    key = key[:-3] if every else key
+    child = (node or {}).get("properties", {}).get(key)
+    if child is None:
+        return False
+    if every:
+        while isinstance(child, dict) and "$ref" in child:
+            child = schema["$defs"][child["$ref"].split("/")[-1]]
+        child = child.get("items")
+    return schema_has(schema, child, parts[1:])
+
+
+def check_declarations(declarations, produced, schema):
+    failed = False
+    by_procedure = {}
+    for results in produced.values():
+        by_procedure.setdefault(results.get("procedure"), []).append(results)
+    procedures = {d["procedure"] for d in declarations if d["procedure"] != "*"}
+    missing_runs = procedures - set(by_procedure)
+    if missing_runs:
+        print("FAIL figures declared for procedures no case runs:", sorted(missing_runs))
+        failed = True
+    for d in declarations:
+        runs = [r for rs in by_procedure.values() for r in rs] if d["procedure"] == "*" \
+            else by_procedure.get(d["procedure"], [])
+        found = [v for r in runs for v in resolve(r, d["path"].split("."))]
+        numbers = [v for v in found if isinstance(v, (int, float)) or
+                   (isinstance(v, dict) and isinstance(v.get("value"), (int, float)))]
+        if not numbers:
+            print("FAIL figure", d["name"] + ": path", d["path"], "reaches no number in a",
+                  d["procedure"], "results.json")
+            failed = True
+            continue
+        if d["uncertainty_path"]:
+            u = [v for r in runs for v in resolve(r, d["uncertainty_path"].split("."))]
+            if not any(isinstance(v, dict) and "expanded" in v for v in u):
+                print("FAIL figure", d["name"] + ": uncertainty_path", d["uncertainty_path"],
+                      "reaches no uncertain figure")
+                failed = True
+                continue
+        if not schema_has(schema, schema, d["path"].split(".")):
+            print("FAIL figure", d["name"] + ": the schema does not describe", d["path"])
+            failed = True
+            continue
+        print("ok   figure", d["name"], "at", d["path"], "=", json.dumps(numbers[0])[:60])
+    return failed
 
 
 def main():
@@ -196,6 +272,13 @@ def main():
             failed = True
         else:
             print("ok   refused: a torsional lost motion without its uncertainty")
+
+    declarations = json.loads(subprocess.run([sys.argv[4]], capture_output=True, text=True,
+                                             check=True).stdout)
+    if not declarations:
+        print("FAIL no figure declarations")
+        failed = True
+    failed = check_declarations(declarations, produced, schema) or failed
 
     if failed:
         sys.exit(1)

@@ -1,29 +1,46 @@
 #include "wavebench/fleet/fleet_figures.hpp"
 
 #include <stdexcept>
+#include <string_view>
+
+#include "wavebench/figures/figure_registry.hpp"
 
 namespace wavebench::fleet {
 
+namespace {
+
+// One trend per fleet name: the first declaration naming it describes it (unit, limit), the
+// others only feed it (the torsional procedure's K1 into the lost-motion procedure's trend).
+std::vector<FleetFigure> trends() {
+  std::vector<FleetFigure> out;
+  for (const auto& d : figures::declared_figures()) {
+    if (!figures::is_trended(d)) continue;
+    bool known = false;
+    for (auto& f : out) {
+      if (std::string_view(f.name) != d.fleet.name) continue;
+      if (std::string_view(f.column) != d.fleet.column) {
+        throw std::logic_error(std::string("figure ") + d.name + ": fleet trend " + d.fleet.name +
+                               " in column " + d.fleet.column + ", declared before in " + f.column);
+      }
+      f.paths.push_back(d.path);
+      known = true;
+    }
+    if (known) continue;
+    out.push_back({d.fleet.name,
+                   d.fleet.column,
+                   d.unit,
+                   d.limit.key,
+                   d.limit.kind == figures::LimitKind::kLower,
+                   d.fleet.what,
+                   {d.path}});
+  }
+  return out;
+}
+
+}  // namespace
+
 const std::vector<FleetFigure>& fleet_figures() {
-  static const std::vector<FleetFigure> figures = {
-      {"static_te_p2p", "static_p2p_arcmin", "arcmin", "static_p2p_arcmin", false,
-       "static TE peak to peak, the largest pass (--direction/--load: one pass)"},
-      {"static_lost_motion", "static_lost_motion_arcmin", "arcmin", "static_lost_motion_arcmin",
-       false, "static procedure: largest |reverse - forward| over its loads"},
-      {"lost_motion", "lost_motion_arcmin", "arcmin", "lost_motion_arcmin", false,
-       "lost motion (lost-motion procedure, else torsional)"},
-      {"k1", "k1_nm_per_rad", "N*m/rad", "min_stiffness_nm_per_rad", true, "stiffness K1"},
-      {"k2", "k2_nm_per_rad", "N*m/rad", "", false, "stiffness K2"},
-      {"k3", "k3_nm_per_rad", "N*m/rad", "", false, "stiffness K3"},
-      {"dynamic_te_p2p", "dynamic_p2p_arcsec", "arcsec", "dynamic_p2p_arcsec", false,
-       "dynamic TE peak to peak"},
-      {"dynamic_te_rms", "dynamic_rms_arcsec", "arcsec", "dynamic_rms_arcsec", false,
-       "dynamic TE RMS"},
-      {"twin_residual_before", "twin_residual_before_arcsec", "arcsec", "", false,
-       "twin residual RMS before calibration"},
-      {"twin_residual_after", "twin_residual_after_arcsec", "arcsec", "twin_residual_rms_arcsec",
-       false, "twin residual RMS after calibration"},
-  };
+  static const std::vector<FleetFigure> figures = trends();
   return figures;
 }
 

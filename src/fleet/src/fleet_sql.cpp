@@ -77,7 +77,7 @@ std::string run_insert_columns() {
   return columns;
 }
 
-SqlQuery runs_query(const FleetRunQuery& q, const SqlDialect& dialect) {
+SqlQuery runs_query(const FleetRunQuery& q, const SqlDialect& dialect, const ColumnSet& absent) {
   SqlWhere where(dialect);
   where.add("gear_model = @", q.gear_model);
   where.add("bench = @", q.bench);
@@ -94,7 +94,9 @@ SqlQuery runs_query(const FleetRunQuery& q, const SqlDialect& dialect) {
   where.add("started_at >= @", utc_bound(q.from, "from"));
   where.add("started_at <= @", utc_bound(q.to, "to"));
   std::string figures;
-  for (const auto& f : fleet_figures()) figures += std::string(", ") + f.column;
+  for (const auto& f : fleet_figures()) {
+    figures += absent.contains(f.column) ? std::string(", NULL") : std::string(", ") + f.column;
+  }
   return {
       "SELECT bench, run_id, station, COALESCE(operator, ''), unit_serial, gear_model, spec, "
       "spec_version, procedure, status, COALESCE(verdict, ''), " +
@@ -123,7 +125,8 @@ FleetRunRow run_row(const std::function<std::string(int)>& text,
   return row;
 }
 
-SqlQuery trend_query(const FigureQuery& q, const FleetFigure& figure, const SqlDialect& dialect) {
+SqlQuery trend_query(const FigureQuery& q, const FleetFigure& figure, const SqlDialect& dialect,
+                     const ColumnSet& absent) {
   const bool one_pass = q.direction || q.load_nm;
   SqlWhere where(dialect);
   where.add("r.gear_model = @", q.gear_model);
@@ -131,7 +134,8 @@ SqlQuery trend_query(const FigureQuery& q, const FleetFigure& figure, const SqlD
   where.add("r.bench = @", q.bench);
   where.add("r.started_at >= @", utc_bound(q.from, "from"));
   where.add("r.started_at <= @", utc_bound(q.to, "to"));
-  std::string value = std::string("r.") + figure.column;
+  std::string value =
+      absent.contains(figure.column) ? std::string("NULL") : std::string("r.") + figure.column;
   std::string from = "fleet_runs r";
   if (one_pass) {
     from += " JOIN fleet_static_passes p ON p.bench = r.bench AND p.run_id = r.run_id";

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "figure_columns.hpp"
 #include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/fleet/results_store.hpp"
 
@@ -58,16 +59,17 @@ std::optional<std::string> utc_bound(const std::optional<std::string>& text,
 // fleet_runs' columns in publish order, the figure columns after them (fleet_figures()).
 std::string run_insert_columns();
 
-// GET /api/fleet/runs: newest first.
-SqlQuery runs_query(const FleetRunQuery& query, const SqlDialect& dialect);
+// GET /api/fleet/runs: newest first. `absent`: figure columns the store lacks (read as NULL).
+SqlQuery runs_query(const FleetRunQuery& query, const SqlDialect& dialect,
+                    const ColumnSet& absent = {});
 // One row of runs_query()'s answer, from its column readers.
 FleetRunRow run_row(const std::function<std::string(int)>& text,
                     const std::function<std::optional<double>(int)>& number);
 
 // The trend of checked_figure(query): columns bench, run_id, unit_serial, started_at, value;
 // the newest `last` runs, oldest first.
-SqlQuery trend_query(const FigureQuery& query, const FleetFigure& figure,
-                     const SqlDialect& dialect);
+SqlQuery trend_query(const FigureQuery& query, const FleetFigure& figure, const SqlDialect& dialect,
+                     const ColumnSet& absent = {});
 // Row `index` (0 the oldest) of trend_query()'s answer.
 TrendPoint trend_point(int index, const std::function<std::string(int)>& text,
                        const std::function<std::optional<double>(int)>& number);

@@ -2,8 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <utility>
+#include <string_view>
 
+#include "wavebench/figures/figure_path.hpp"
+#include "wavebench/fleet/fleet_figures.hpp"
 #include "wavebench/storage/sha256.hpp"
 
 namespace wavebench::fleet {
@@ -15,7 +17,8 @@ using nlohmann::json;
 // Arrays kept in the run folder only: the shared store holds figures, not curves.
 bool bulky(const std::string& key) {
   return key == "trace" || key == "points" || key == "order_spectrum" || key == "mean_curve" ||
-         key == "revolutions" || key == "residual_before" || key == "residual_after";
+         key == "revolutions" || key == "residual_before" || key == "residual_after" ||
+         key == "fit_curve";
 }
 
 json without_bulky(const json& value) {
@@ -51,34 +54,27 @@ std::string text_or_empty(const json& value) {
   return value.is_string() ? value.get<std::string>() : std::string();
 }
 
-void put(std::map<std::string, double>& figures, const char* name, std::optional<double> value) {
-  if (value) figures[name] = *value;
-}
-
-std::optional<double> first_of(std::optional<double> a, std::optional<double> b) {
-  return a ? a : b;
-}
-
-std::optional<double> largest(const json& list, const char* key) {
-  std::optional<double> best;
-  if (!list.is_array()) return best;
-  for (const auto& item : list) {
-    if (!item.is_object() || !item.contains(key)) continue;
-    if (const auto v = figure_value(item[key])) {
-      best = std::max(best.value_or(0.0), std::abs(*v));  // widths written negative before #11
+// A fleet figure's value in `results`: the first of its paths that the run has; a path over an
+// array ([*]) gives the largest magnitude (widths were written negative before #11).
+std::optional<double> fleet_value(const json& results, const FleetFigure& figure) {
+  for (const char* path : figure.paths) {
+    const bool every = std::string_view(path).find("[*]") != std::string_view::npos;
+    std::optional<double> best;
+    for (const auto& at : figures::find_figure_values(results, path)) {
+      const auto v = figures::number_of(*at.value);
+      if (!v) continue;
+      best = every ? std::max(best.value_or(0.0), std::abs(*v)) : *v;
+      if (!every) break;
     }
+    if (best) return best;
   }
-  return best;
+  return std::nullopt;
 }
 
 }  // namespace
 
 std::optional<double> figure_value(const json& value) {
-  if (value.is_number()) return value.get<double>();
-  if (value.is_object() && value.contains("value") && value["value"].is_number()) {
-    return value["value"].get<double>();
-  }
-  return std::nullopt;
+  return figures::number_of(value);
 }
 
 RunSummary summarise_run(const storage::RunRecord& run, const json& results_in,
@@ -125,25 +121,9 @@ RunSummary summarise_run(const storage::RunRecord& run, const json& results_in,
                                  figure_value(p.value("std_arcmin", json()))});
     }
   }
-  auto& f = s.figures;
-  put(f, "static_te_p2p", largest(passes, "p2p_arcmin"));
-  put(f, "static_lost_motion", largest(at(results, {"lost_motion"}), "max_abs_arcmin"));
-  put(f, "lost_motion",
-      first_of(figure_value(at(results, {"lost_motion_fit", "lost_motion_arcmin"})),
-               figure_value(at(results, {"torsional", "lost_motion_arcmin"}))));
-  for (const auto& [name, key] :
-       {std::pair{"k1", "k1_nm_per_rad"}, std::pair{"k2", "k2_nm_per_rad"},
-        std::pair{"k3", "k3_nm_per_rad"}}) {
-    put(f, name,
-        first_of(figure_value(at(results, {"lost_motion_fit", "stiffness", key})),
-                 figure_value(at(results, {"torsional", "stiffness", key}))));
+  for (const auto& figure : fleet_figures()) {
+    if (const auto v = fleet_value(results, figure)) s.figures[figure.name] = *v;
   }
-  put(f, "dynamic_te_p2p", figure_value(at(results, {"dynamic", "p2p_arcsec"})));
-  put(f, "dynamic_te_rms", figure_value(at(results, {"dynamic", "rms_arcsec"})));
-  put(f, "twin_residual_before",
-      figure_value(at(results, {"twin", "calibration", "rms_before_arcsec"})));
-  put(f, "twin_residual_after",
-      figure_value(at(results, {"twin", "calibration", "rms_after_arcsec"})));
   s.results = without_bulky(results);
   return s;
 }

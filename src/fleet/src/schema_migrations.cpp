@@ -4,6 +4,8 @@
 #include <cstddef>
 #include <string>
 
+#include "figure_columns.hpp"
+
 namespace wavebench::fleet {
 
 namespace {
@@ -71,6 +73,27 @@ int current_version(PgConnection& db) {
   return std::stoi(r.text(0, 0));
 }
 
+ColumnSet run_columns(PgConnection& db) {
+  const auto r = db.exec(
+      "SELECT column_name FROM information_schema.columns WHERE table_name = 'fleet_runs' AND "
+      "table_schema = current_schema()");
+  ColumnSet present;
+  for (int i = 0; i < r.rows(); ++i) present.insert(r.text(i, 0));
+  return present;
+}
+
+// The declared figures' columns the table lacks (figure_columns.hpp), under the schema's lock.
+// A step computed from the declarations, not numbered: schema_version stays the numbered one.
+void add_figure_columns(PgConnection& db) {
+  if (missing_figure_columns(run_columns(db)).empty()) return;
+  db.transaction([&] {
+    db.exec(kLock);
+    for (const auto& column : missing_figure_columns(run_columns(db))) {
+      db.exec(add_figure_column_sql(column, "DOUBLE PRECISION"));
+    }
+  });
+}
+
 }  // namespace
 
 int fleet_schema_migrations() {
@@ -90,8 +113,10 @@ int migrate_fleet_schema(PgConnection& db) {
       db.exec("INSERT INTO schema_version (version) VALUES ($1)", {std::to_string(version)});
       applied = true;
     });
-    if (!applied) return version;
+    if (!applied) break;
   }
+  add_figure_columns(db);
+  return version;
 }
 
 }  // namespace wavebench::fleet

@@ -1,7 +1,8 @@
 #pragma once
 // The shared store's schema, as numbered migrations (docs/formats/fleet-store.md): migration N
 // runs in one transaction with its row in schema_version, under an advisory lock, so benches
-// starting at once apply each exactly once.
+// starting at once apply each exactly once. After them, a step computed from the figure
+// declarations adds the fleet_runs columns of newly declared trends (figure_columns.hpp).
 
 #include "pg_connection.hpp"
 

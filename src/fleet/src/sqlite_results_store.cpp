@@ -6,6 +6,7 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "figure_columns.hpp"
 #include "figure_query_rules.hpp"
 #include "fleet_sql.hpp"
 #include "sqlite_statement.hpp"
@@ -104,6 +105,13 @@ int current_version(sqlite3* db) {
   return static_cast<int>(s.number(0).value_or(0));
 }
 
+ColumnSet run_columns(sqlite3* db) {
+  ColumnSet present;
+  SqliteStatement s(db, "SELECT name FROM pragma_table_info('fleet_runs')");
+  while (s.step()) present.insert(s.text(0));
+  return present;
+}
+
 void migrate(sqlite3* db) {
   transaction(db, [&] {
     exec(db,
@@ -114,6 +122,10 @@ void migrate(sqlite3* db) {
       SqliteStatement s(db, "INSERT INTO fleet_schema_version (version) VALUES (?1)");
       s.bind(1, std::to_string(v + 1));
       s.step();
+    }
+    // The declared figures' columns after the numbered migrations (figure_columns.hpp).
+    for (const auto& column : missing_figure_columns(run_columns(db))) {
+      exec(db, add_figure_column_sql(column, "REAL"));
     }
   });
 }
@@ -150,6 +162,8 @@ SqliteResultsStore::SqliteResultsStore(const std::filesystem::path& file, Access
           " holds no run summaries yet (wavebenchd fills them at its start and at the end of "
           "every run)");
     }
+    const auto missing = missing_figure_columns(run_columns(db_));
+    absent_ = ColumnSet(missing.begin(), missing.end());
   } catch (...) {
     sqlite3_close(db_);
     db_ = nullptr;
@@ -222,7 +236,7 @@ bool SqliteResultsStore::publish(const RunSummary& run) {
 }
 
 std::vector<FleetRunRow> SqliteResultsStore::runs(const FleetRunQuery& q) {
-  const auto query = runs_query(q, kSqliteSql);
+  const auto query = runs_query(q, kSqliteSql, absent_);
   SqliteStatement s(db_, query.sql);
   bind_all(s, query.params);
   std::vector<FleetRunRow> rows;
@@ -234,7 +248,7 @@ std::vector<FleetRunRow> SqliteResultsStore::runs(const FleetRunQuery& q) {
 }
 
 std::vector<TrendPoint> SqliteResultsStore::trend(const FigureQuery& q) {
-  const auto query = trend_query(q, checked_figure(q), kSqliteSql);
+  const auto query = trend_query(q, checked_figure(q), kSqliteSql, absent_);
   SqliteStatement s(db_, query.sql);
   bind_all(s, query.params);
   std::vector<TrendPoint> points;

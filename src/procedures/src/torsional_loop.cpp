@@ -6,6 +6,7 @@
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "wavebench/procedures/gear_sense.hpp"
 
@@ -292,6 +293,49 @@ TorsionalLoopResult analyse_torsional_loop(std::span<const LoopPoint> points,
   return r;
 }
 
+namespace {
+
+// The fitted three-segment curve, plot-ready (issue #23): each side of zero at the mean curve's
+// own offset (its median residual about the fitted compliance), 101 points from zero to the
+// side's largest torque. Computed once here; the report and the run page only draw it.
+nlohmann::json fit_curve_json(const TorsionalLoopResult& r) {
+  ThreeSegmentStiffness k;
+  k.k1 = r.k1_nm_per_rad.value;
+  k.k2 = r.k2_nm_per_rad.value;
+  k.k3 = r.k3_nm_per_rad.value;
+  k.t1 = r.t1_nm.value;
+  k.t2 = r.t2_nm.value;
+  nlohmann::json sides = nlohmann::json::array();
+  if (!(k.k1 > 0 && k.k2 > 0 && k.k3 > 0)) return sides;
+  const std::size_t n = std::min(r.mean_torque_nm.size(), r.mean_twist_rad.size());
+  for (const int side : {+1, -1}) {
+    std::vector<double> offsets;
+    double t_end = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      const double torque = r.mean_torque_nm[i];
+      if (side * torque <= 0) continue;
+      offsets.push_back((r.mean_twist_rad[i] - k.twist_at(torque)) * kArcminPerRad);
+      t_end = std::max(t_end, std::abs(torque));
+    }
+    if (offsets.empty()) continue;
+    std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
+    const double offset = offsets[offsets.size() / 2];
+    nlohmann::json torque = nlohmann::json::array(), twist = nlohmann::json::array();
+    for (int i = 0; i <= 100; ++i) {
+      const double t = side * t_end * i / 100.0;
+      torque.push_back(t);
+      twist.push_back(offset + k.twist_at(t) * kArcminPerRad);
+    }
+    sides.push_back({{"side", side > 0 ? "positive" : "negative"},
+                     {"offset_arcmin", offset},
+                     {"torque_nm", torque},
+                     {"twist_arcmin", twist}});
+  }
+  return sides;
+}
+
+}  // namespace
+
 nlohmann::json to_json(const TorsionalLoopResult& r) {
   const double arcmin = kArcminPerRad;
   nlohmann::json mean_twist = nlohmann::json::array();
@@ -317,7 +361,8 @@ nlohmann::json to_json(const TorsionalLoopResult& r) {
           {"points_used", r.points_used},
           {"points_voided", r.points_voided},
           {"flat_step_points", r.flat_step_points},
-          {"mean_curve", {{"torque_nm", r.mean_torque_nm}, {"twist_arcmin", mean_twist}}}};
+          {"mean_curve", {{"torque_nm", r.mean_torque_nm}, {"twist_arcmin", mean_twist}}},
+          {"fit_curve", fit_curve_json(r)}};
 }
 
 }  // namespace wavebench::procedures

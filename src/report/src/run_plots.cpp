@@ -343,48 +343,45 @@ std::optional<Figure> hysteresis_figure(const TorqueTwistCurve& curve, const jso
     ax.scatter(x, y, "measured", palette(0), 3.0);
   }
   if (!fit || t_max <= 0) return fig;
-  const auto& st = (*fit)["stiffness"];
-  procedures::ThreeSegmentStiffness k;
-  k.k1 = number(st, "k1_nm_per_rad").value_or(0);
-  k.k2 = number(st, "k2_nm_per_rad").value_or(0);
-  k.k3 = number(st, "k3_nm_per_rad").value_or(0);
-  k.t1 = number(st, "t1_nm").value_or(0);
-  k.t2 = number(st, "t2_nm").value_or(0);
-  if (!(k.k1 > 0 && k.k2 > 0 && k.k3 > 0)) return fig;
-  // The fit's model per branch: twist = offset + sign(T)·φ(|T|); the offsets are where each
-  // branch's points sit about the fitted compliance.
-  struct Branch {
-    std::vector<double> offsets;
-    double t_lo = 0, t_hi = 0;  // its torque span, with zero torque (the intercept)
-  } forward, reverse;
-  for (std::size_t i = 0; i < n; ++i) {
-    const double t = curve.torque_nm[i];
-    Branch& b = curve.travel[i] > 0 ? forward : reverse;
-    b.offsets.push_back(curve.twist_arcmin[i] - k.twist_at(t) * procedures::kArcminPerRad);
-    b.t_lo = std::min(b.t_lo, t);
-    b.t_hi = std::max(b.t_hi, t);
-  }
-  const auto branch = [&](const Branch& b, const char* label, Color color) {
-    if (b.offsets.empty()) return;
-    const double o = median(b.offsets);
-    std::vector<double> bx, by;
-    for (int i = 0; i <= 200; ++i) {
-      const double t = b.t_lo + (b.t_hi - b.t_lo) * i / 200.0;
-      bx.push_back(o + k.twist_at(t) * procedures::kArcminPerRad);
-      by.push_back(t);
+  // The fitted model per travel branch as results.json carries it (lost_motion_fit.fit_curve,
+  // computed once by the procedure): drawn, not recomputed.
+  std::optional<double> forward_offset, any_offset;
+  const auto curves = fit->find("fit_curve");
+  if (curves != fit->end() && curves->is_array()) {
+    for (const auto& b : *curves) {
+      if (!b.is_object()) continue;
+      const auto& ts = b.value("torque_nm", json::array());
+      const auto& xs = b.value("twist_arcmin", json::array());
+      std::vector<double> bx, by;
+      for (std::size_t i = 0; i < std::min(ts.size(), xs.size()); ++i) {
+        if (!ts[i].is_number() || !xs[i].is_number()) continue;
+        bx.push_back(xs[i].get<double>());
+        by.push_back(ts[i].get<double>());
+      }
+      if (bx.empty()) continue;
+      const bool reverse = number(b, "travel").value_or(1) < 0;
+      ax.line(bx, by, reverse ? "fit, reverse travel" : "fit, forward travel",
+              palette(reverse ? 3 : 1))
+          .series.back()
+          .width = 2.2;
+      const auto o = number(b, "offset_arcmin");
+      if (!reverse && o) forward_offset = o;
+      if (o && !any_offset) any_offset = o;
     }
-    ax.line(bx, by, label, color).series.back().width = 2.2;
-  };
-  branch(forward, "fit, forward travel", palette(1));
-  branch(reverse, "fit, reverse travel", palette(3));
+  }
+  const auto& st = fit->value("stiffness", json::object());
   char buf[160];
-  std::snprintf(buf, sizeof buf, " - K1 %.3g, K2 %.3g, K3 %.3g N*m/rad; T1 %.3g, T2 %.3g N*m", k.k1,
-                k.k2, k.k3, k.t1, k.t2);
-  ax.title += buf;
-  if (const auto lm = number(*fit, "lost_motion_arcmin")) {
+  if (const auto k1 = number(st, "k1_nm_per_rad")) {
+    std::snprintf(buf, sizeof buf, " - K1 %.3g, K2 %.3g, K3 %.3g N*m/rad; T1 %.3g, T2 %.3g N*m",
+                  *k1, number(st, "k2_nm_per_rad").value_or(0),
+                  number(st, "k3_nm_per_rad").value_or(0), number(st, "t1_nm").value_or(0),
+                  number(st, "t2_nm").value_or(0));
+    ax.title += buf;
+  }
+  if (const auto lm = number(*fit, "lost_motion_arcmin"); lm && any_offset) {
     const auto at = number(*fit, "lost_motion_torque_nm");
     std::snprintf(buf, sizeof buf, "lost motion %.2f arcmin at +/-%.3g N*m", *lm, at.value_or(0));
-    ax.annotate(median(forward.offsets.empty() ? reverse.offsets : forward.offsets), 0, buf, false);
+    ax.annotate(forward_offset.value_or(*any_offset), 0, buf, false);
   }
   return fig;
 }

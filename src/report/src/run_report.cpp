@@ -4,6 +4,7 @@
 #include <stdexcept>
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
+#include "wavebench/report/declared_figures_table.hpp"
 #include "wavebench/report/dynamic_plot_data.hpp"
 #include "wavebench/report/endurance_section.hpp"
 #include "wavebench/report/run_plots.hpp"
@@ -114,6 +115,7 @@ RunReport write_run_report(const fs::path& run_dir, const fs::path& out_dir) {
   HtmlTable limits = limits_table();
   add_limit_rows(limits, run);
   add_table(page, limits);
+  add_table(page, declared_figures_table(run.field("procedure"), run.results));
 
   // Static TE.
   if (const json* passes = static_passes(run.results)) {

@@ -161,45 +161,25 @@ std::optional<Figure> torsional_loop_figure(const json& t) {
   }
   if (!vx.empty()) ax.scatter(vx, vy, "voided (output slipped)", palette(6), 3.5);
 
-  // The fitted three-segment curve over the mean curve, each side of zero at its own offset.
-  const json* mean = figure_at(t, "mean_curve");
-  procedures::ThreeSegmentStiffness k;
-  const auto value_of = [&](const char* key) {
-    const json* f = figure_at(t, "stiffness", key);
-    return f ? number(*f, "value").value_or(0) : 0.0;
-  };
-  k.k1 = value_of("k1_nm_per_rad");
-  k.k2 = value_of("k2_nm_per_rad");
-  k.k3 = value_of("k3_nm_per_rad");
-  k.t1 = value_of("t1_nm");
-  k.t2 = value_of("t2_nm");
-  if (mean && k.k1 > 0 && k.k2 > 0 && k.k3 > 0 && mean->contains("torque_nm") &&
-      mean->contains("twist_arcmin") && (*mean)["torque_nm"].is_array() &&
-      (*mean)["twist_arcmin"].is_array()) {
-    const auto& mt = (*mean)["torque_nm"];
-    const auto& my = (*mean)["twist_arcmin"];
-    for (int side : {+1, -1}) {
-      std::vector<double> offsets;
-      double t_end = 0;
-      for (std::size_t i = 0; i < std::min(mt.size(), my.size()); ++i) {
-        if (!mt[i].is_number() || !my[i].is_number()) continue;
-        const double torque = mt[i].get<double>();
-        if (side * torque <= 0) continue;
-        offsets.push_back(my[i].get<double>() - k.twist_at(torque) * procedures::kArcminPerRad);
-        t_end = std::max(t_end, std::abs(torque));
-      }
-      if (offsets.empty()) continue;
-      std::nth_element(offsets.begin(), offsets.begin() + offsets.size() / 2, offsets.end());
-      const double o = offsets[offsets.size() / 2];
+  // The fitted three-segment curve as results.json carries it (each side of zero at its own
+  // offset, computed once by the procedure): drawn, not recomputed.
+  if (const auto c = t.find("fit_curve"); c != t.end() && c->is_array()) {
+    bool first = true;
+    for (const auto& side : *c) {
+      if (!side.is_object()) continue;
       std::vector<double> fx, fy;
-      for (int i = 0; i <= 200; ++i) {
-        const double torque = side * t_end * i / 200.0;
-        fx.push_back(torque);
-        fy.push_back(o + k.twist_at(torque) * procedures::kArcminPerRad);
+      const auto& ts = side.value("torque_nm", json::array());
+      const auto& ys = side.value("twist_arcmin", json::array());
+      for (std::size_t i = 0; i < std::min(ts.size(), ys.size()); ++i) {
+        if (!ts[i].is_number() || !ys[i].is_number()) continue;
+        fx.push_back(ts[i].get<double>());
+        fy.push_back(ys[i].get<double>());
       }
-      ax.line(std::move(fx), std::move(fy), side > 0 ? "fit K1/K2/K3 (mean curve)" : "", palette(3))
+      if (fx.empty()) continue;
+      ax.line(std::move(fx), std::move(fy), first ? "fit K1/K2/K3 (mean curve)" : "", palette(3))
           .series.back()
           .width = 2.2;
+      first = false;
     }
   }
   const auto note = [&](const char* key, const char* what, double y) {

@@ -138,6 +138,43 @@ nlohmann::json LostMotionOptions::to_json() const {
           {"brake_settle_s", brake_settle_s}};
 }
 
+namespace {
+
+// Plot-ready (issue #23): each travel branch of the fitted model, twist = the fit's branch
+// offset + φ(T), over the branch's torque span with zero torque. Computed once here; the
+// report and the run page only draw it.
+nlohmann::json fit_curve_json(const std::vector<procedures::TorqueTwistPoint>& record,
+                              const procedures::LostMotionResult& result) {
+  const auto& k = result.stiffness;
+  nlohmann::json branches = nlohmann::json::array();
+  if (!(k.k1 > 0 && k.k2 > 0 && k.k3 > 0)) return branches;
+  for (const int travel : {+1, -1}) {
+    double lo = 0, hi = 0;
+    bool any = false;
+    for (const auto& p : record) {
+      if ((p.travel > 0 ? 1 : -1) != travel) continue;
+      lo = std::min(lo, p.torque_nm);
+      hi = std::max(hi, p.torque_nm);
+      any = true;
+    }
+    if (!any) continue;
+    const double offset = travel > 0 ? result.forward_offset_rad : result.reverse_offset_rad;
+    nlohmann::json torque = nlohmann::json::array(), twist = nlohmann::json::array();
+    for (int i = 0; i <= 200; ++i) {
+      const double t = lo + (hi - lo) * i / 200.0;
+      torque.push_back(t);
+      twist.push_back((offset + k.twist_at(t)) * procedures::kArcminPerRad);
+    }
+    branches.push_back({{"travel", travel},
+                        {"offset_arcmin", offset * procedures::kArcminPerRad},
+                        {"torque_nm", torque},
+                        {"twist_arcmin", twist}});
+  }
+  return branches;
+}
+
+}  // namespace
+
 nlohmann::json LostMotionOutcome::to_json() const {
   nlohmann::json j = procedures::to_json(result);
   j["uncertainty"] = procedures::fit_uncertainty_json(uncertainty);
@@ -151,6 +188,7 @@ nlohmann::json LostMotionOutcome::to_json() const {
                       {"twist_arcmin", p.twist_rad * procedures::kArcminPerRad}});
   }
   j["points"] = points;
+  j["fit_curve"] = fit_curve_json(record, result);
   return j;
 }
 

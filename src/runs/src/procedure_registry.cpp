@@ -2,6 +2,7 @@
 
 #include <array>
 
+#include "wavebench/figures/figure_registry.hpp"
 #include "wavebench/runs/procedure_catalogue.hpp"
 
 namespace wavebench::runs {
@@ -107,7 +108,8 @@ nlohmann::json procedures_json() {
     list.push_back({{"name", p.name},
                     {"title", p.title},
                     {"description", p.description},
-                    {"options", options}});
+                    {"options", options},
+                    {"figures", figures::figures_json(p.name)}});
   }
   return {{"procedures", list}};
 }

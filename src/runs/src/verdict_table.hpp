@@ -1,7 +1,8 @@
 #pragma once
-// The one table of what a verdict judges (issue #11): each product spec key, the limit key a
-// request's "limits" uses for it, its unit, and where results.json holds the figure. A new
-// procedure's figures are judged by a new row here; nothing else in the verdict changes.
+// What a verdict judges (issue #11): each product spec key, the limit key a request's "limits"
+// uses for it, its unit, and where results.json holds the figure; generated from the figures
+// declared beside their procedures (src/figures, issue #23): a declared figure with a spec
+// limit is judged; nothing here changes for a new one.
 //
 // A path is keys separated by dots; `name[*]` takes every element of an array (one check per
 // element). The figure at the end of a path is found, first match wins:

@@ -102,6 +102,20 @@ compare.addEventListener('click', () => {
 });
 window.addEventListener('popstate', () => { readLocation(); load(false); });
 
-readLocation();
-updateCompare();
-load(false);
+// The procedures come from the daemon's registry (GET /api/procedures), never from a list here.
+async function fillProcedures() {
+  try {
+    const select = form.elements.procedure;
+    for (const p of (await get('/api/procedures')).procedures || []) {
+      select.append(el('option', { value: p.name }, p.name));
+    }
+  } catch (_) {
+    // an older daemon: "any" only; the filter still takes a name from the page's query
+  }
+}
+
+fillProcedures().finally(() => {
+  readLocation();
+  updateCompare();
+  load(false);
+});

@@ -8,6 +8,8 @@ import { awaitResults } from './run_progress.js';
 import { uncertain, plusMinus, figureText, utcSeconds, limitName, whereText } from './figures.js';
 import { readRun } from './run_reads.js';
 import { exportButtons } from './run_exports.js';
+import { get } from './api.js';
+import { declaredFiguresOf, declaredFiguresSection } from './declared_figures.js';
 
 const id = new URLSearchParams(location.search).get('id') || '';
 const main = document.getElementById('run');
@@ -252,18 +254,6 @@ function dynamicSections(results) {
   return out;
 }
 
-// The three-segment stiffness (K1 to T1, K2 to T2, K3 beyond), odd in the torque [rad].
-function twistAt(k, t) {
-  const a = Math.abs(t);
-  const s1 = Math.min(a, k.t1_nm);
-  const s2 = Math.max(0, Math.min(a, k.t2_nm) - k.t1_nm);
-  const s3 = Math.max(0, a - k.t2_nm);
-  const phi = s1 / k.k1_nm_per_rad + s2 / k.k2_nm_per_rad + s3 / k.k3_nm_per_rad;
-  return t >= 0 ? phi : -phi;
-}
-
-const ARCMIN_PER_RAD = (180 * 60) / Math.PI;
-
 function lostMotionFitSections(results) {
   const f = results.lost_motion_fit;
   if (!f) return [];
@@ -286,7 +276,6 @@ function lostMotionFitSections(results) {
     ], { id: 'lost-motion-fit-table' }),
     box);
   const points = f.points || [];
-  const fitted = k.k1_nm_per_rad > 0 && k.k2_nm_per_rad > 0 && k.k3_nm_per_rad > 0;
   s.draws = [() => {
     const branches = [1, -1].map((travel) => points.filter((p) => p.travel === travel));
     const pairs = branches.map((b) => [b.map((p) => p.twist_arcmin), b.map((p) => p.torque_nm)]);
@@ -294,18 +283,13 @@ function lostMotionFitSections(results) {
       { label: 'measured, forward', color: palette[0], points: true },
       { label: 'measured, reverse', color: palette[1], points: true },
     ];
-    if (fitted) {
-      // Each branch's fit sits where its points do about the fitted compliance (median offset).
-      branches.forEach((b, i) => {
-        if (!b.length) return;
-        const offsets = b.map((p) => p.twist_arcmin - twistAt(k, p.torque_nm) * ARCMIN_PER_RAD).sort((x, y) => x - y);
-        const o = offsets[Math.floor(offsets.length / 2)];
-        const lo = Math.min(0, ...b.map((p) => p.torque_nm));
-        const hi = Math.max(0, ...b.map((p) => p.torque_nm));
-        const ts = Array.from({ length: 201 }, (_, j) => lo + ((hi - lo) * j) / 200);
-        pairs.push([ts.map((t) => o + twistAt(k, t) * ARCMIN_PER_RAD), ts]);
-        series.push({ label: `fit K1/K2/K3, ${i ? 'reverse' : 'forward'}`, color: palette[i ? 3 : 2], width: 2, spanGaps: true });
-      });
+    // The fitted model per travel branch as results.json carries it (computed once by the
+    // procedure): drawn, not recomputed.
+    for (const b of Array.isArray(f.fit_curve) ? f.fit_curve : []) {
+      if (!Array.isArray(b.torque_nm) || !Array.isArray(b.twist_arcmin)) continue;
+      const reverse = b.travel < 0;
+      pairs.push([b.twist_arcmin, b.torque_nm]);
+      series.push({ label: `fit K1/K2/K3, ${reverse ? 'reverse' : 'forward'}`, color: palette[reverse ? 3 : 2], width: 2, spanGaps: true });
     }
     makePlot(box.querySelector('.plot-area'), {
       xLabel: 'twist [arcmin]', yLabel: 'torque [N·m]', series, data: joinSeries(pairs),
@@ -374,25 +358,12 @@ function torsionalSections(results) {
       pairs.push([voided.map((p) => p.torque_nm), voided.map((p) => p.twist_arcmin)]);
       series.push({ label: 'voided (slip)', color: palette[6], points: true });
     }
-    const mean = t.mean_curve || { torque_nm: [], twist_arcmin: [] };
-    const fit = {
-      t1_nm: k.t1_nm && k.t1_nm.value, t2_nm: k.t2_nm && k.t2_nm.value,
-      k1_nm_per_rad: k.k1_nm_per_rad && k.k1_nm_per_rad.value,
-      k2_nm_per_rad: k.k2_nm_per_rad && k.k2_nm_per_rad.value,
-      k3_nm_per_rad: k.k3_nm_per_rad && k.k3_nm_per_rad.value,
-    };
-    if (fit.k1_nm_per_rad > 0 && fit.k2_nm_per_rad > 0 && fit.k3_nm_per_rad > 0) {
-      // Each side of zero at the mean curve's own offset (median), as the report draws it.
-      [1, -1].forEach((side) => {
-        const idx = mean.torque_nm.map((_, i) => i).filter((i) => side * mean.torque_nm[i] > 0);
-        if (!idx.length) return;
-        const offsets = idx.map((i) => mean.twist_arcmin[i] - twistAt(fit, mean.torque_nm[i]) * ARCMIN_PER_RAD).sort((a, b) => a - b);
-        const o = offsets[Math.floor(offsets.length / 2)];
-        const end = Math.max(...idx.map((i) => Math.abs(mean.torque_nm[i])));
-        const ts = Array.from({ length: 101 }, (_, j) => (side * end * j) / 100);
-        pairs.push([ts, ts.map((x) => o + twistAt(fit, x) * ARCMIN_PER_RAD)]);
-        series.push({ label: side > 0 ? 'fit K1/K2/K3, T > 0' : 'fit K1/K2/K3, T < 0', color: palette[3], width: 2, spanGaps: true });
-      });
+    // The fitted curve as results.json carries it (each side of zero at its own offset,
+    // computed once by the procedure): drawn, not recomputed.
+    for (const side of Array.isArray(t.fit_curve) ? t.fit_curve : []) {
+      if (!Array.isArray(side.torque_nm) || !Array.isArray(side.twist_arcmin)) continue;
+      pairs.push([side.torque_nm, side.twist_arcmin]);
+      series.push({ label: side.side === 'negative' ? 'fit K1/K2/K3, T < 0' : 'fit K1/K2/K3, T > 0', color: palette[3], width: 2, spanGaps: true });
     }
     makePlot(box.querySelector('.plot-area'), {
       xLabel: 'torque [N·m]', yLabel: 'twist θ_in/N − θ_out [arcmin]', series, data: joinSeries(pairs), height: 360,
@@ -512,6 +483,9 @@ async function main_() {
   const sections = [header(run, results)];
   const limits = limitChecks(results);
   if (limits) sections.push(limits);
+  // Every figure the procedure declares (src/figures), as GET /api/procedures serves them.
+  const figures = declaredFiguresSection(await declaredFiguresOf(get, run.procedure), results);
+  if (figures) sections.push(figures);
   if (results.warnings && results.warnings.length) {
     sections.push(el('div', { class: 'warning' }, results.warnings.map((w) => el('p', {}, w))));
   }

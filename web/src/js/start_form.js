@@ -6,13 +6,6 @@
 import { get, post, ApiError } from './api.js';
 import { SerialScan } from './serial_scan.js';
 
-const FALLBACK = [
-  { name: 'static', title: 'Static TE', options: [] },
-  { name: 'dynamic', title: 'Dynamic TE', options: [] },
-  { name: 'lost-motion', title: 'Lost motion', options: [] },
-  { name: 'torsional', title: 'Torsional stiffness (locked output)', options: [] },
-  { name: 'endurance', title: 'Endurance', options: [] },
-];
 // The summary names this many of a procedure's options (its first, in schema order: the ones
 // that shape the run), and every option changed from its default.
 const KEY_OPTIONS = 2;
@@ -69,10 +62,12 @@ export class StartForm {
   }
 
   async load() {
+    // The procedures come from the daemon's registry only (GET /api/procedures): a daemon that
+    // does not serve it leaves the list empty, and nothing can start.
     try {
-      this.procedures = (await get('/api/procedures')).procedures;
+      this.procedures = (await get('/api/procedures')).procedures || [];
     } catch (_) {
-      this.procedures = FALLBACK;  // an older daemon: the options keep their defaults
+      this.procedures = [];
     }
     const select = $('procedure');
     select.replaceChildren(...this.procedures.map((p) => el('option', { value: p.name }, p.title || p.name)));

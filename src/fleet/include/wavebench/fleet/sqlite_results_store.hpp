@@ -6,6 +6,8 @@
 // run not yet there. One connection; not thread-safe: one store per thread.
 
 #include <filesystem>
+#include <set>
+#include <string>
 
 #include "wavebench/fleet/results_store.hpp"
 
@@ -16,7 +18,8 @@ namespace wavebench::fleet {
 class SqliteResultsStore : public ResultsStore {
  public:
   enum class Access {
-    kReadWrite,  // creates the file and the tables, applies the migrations it lacks
+    kReadWrite,  // creates the file and the tables, applies the migrations it lacks and adds
+                 // the declared figure columns it lacks
     kReadOnly,   // queries only; refuses a file without the tables
   };
   // Throws std::runtime_error naming the file and SQLite's message.
@@ -35,6 +38,8 @@ class SqliteResultsStore : public ResultsStore {
 
  private:
   sqlite3* db_ = nullptr;
+  // Declared figure columns an older file opened read-only lacks: they read as NULL.
+  std::set<std::string> absent_;
 };
 
 // The newest schema version of the SQLite store this build writes.

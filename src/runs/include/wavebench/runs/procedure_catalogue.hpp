@@ -8,7 +8,8 @@
 
 namespace wavebench::runs {
 
-// {"procedures": [{"name", "title", "description", "options": [OptionSpec::to_json(), ...]}]}
+// {"procedures": [{"name", "title", "description", "options": [OptionSpec::to_json(), ...],
+//                  "figures": [figures::to_json(declaration), ...]}]}
 nlohmann::json procedures_json();
 
 // "static", "dynamic", "lost-motion", in the registry's order.
