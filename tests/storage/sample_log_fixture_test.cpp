@@ -66,8 +66,8 @@ INSTANTIATE_TEST_SUITE_P(WrittenBeforeTheChannelTable, SampleLogFixture,
                          ::testing::Values(Fixture{"v2_two_extras.wbs", 2, 2, 12},
                                            Fixture{"v2_core_only.wbs", 2, 0, 6},
                                            Fixture{"v1_core_only.wbs", 1, 0, 4}),
-                         [](const auto& info) {
-                           std::string name = info.param.file;
+                         [](const auto& fixture) {
+                           std::string name = fixture.param.file;
                            return name.substr(0, name.find('.'));
                          });
 
