@@ -625,15 +625,10 @@ nlohmann::json DaemonApi::status_json() const {
     if (!newest.samples.empty()) {
       const auto& x = newest.samples.back().sample;
       newest_sample = x;
-      const auto value = [&](storage::SampleFlag flag, double v) {
-        return x.valid(flag) ? nlohmann::json(v) : nlohmann::json(nullptr);
-      };
-      j["latest"] = {{"time_s", static_cast<double>(x.receive_time_ns) * 1e-9},
-                     {"input_speed_rad_s", value(storage::kInputSpeedValid, x.input_speed_rad_s)},
-                     {"theta_out_rad", value(storage::kThetaOutValid, x.theta_out_rad)},
-                     {"torque_nm", value(storage::kTorqueValid, x.torque_nm)},
-                     {"brake_current_a", value(storage::kBrakeCurrentValid, x.brake_current_a)},
-                     {"brake_torque_nm", value(storage::kBrakeTorqueValid, x.brake_torque_nm)}};
+      j["latest"] = {{"time_s", static_cast<double>(x.receive_time_ns) * 1e-9}};
+      for (std::size_t i = 0; i < storage::kCoreChannels.size(); ++i)
+        j["latest"][std::string(storage::kCoreChannels[i].column)] =
+            x.arrived(i) ? nlohmann::json(x.value(i)) : nlohmann::json(nullptr);
     }
   }
   const auto words = servo_words(s, newest_sample);

@@ -1,5 +1,6 @@
 #include "wavebench/daemon/live_stream.hpp"
 
+#include <array>
 #include <charconv>
 #include <cmath>
 #include <limits>
@@ -15,6 +16,9 @@ namespace {
 
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMaxSamplesPerFrame = 65536;
+// The sample's channels the live plots draw beside TE (series 1..3), keyed by their columns.
+constexpr std::array<std::size_t, 3> kPlotted{
+    storage::channel::kInputSpeed, storage::channel::kTorque, storage::channel::kBrakeCurrent};
 
 template <typename T>
 T number_param(const HttpTarget& target, const std::string& key, T fallback, T low, T high,
@@ -97,9 +101,8 @@ nlohmann::json LiveStreamFrames::frame() {
     series_[0].push_back(angles && ratio_
                              ? te_arcsec(s.theta_in_rad, s.theta_out_rad, *ratio_, direction_sign_)
                              : kNaN);
-    series_[1].push_back(s.valid(storage::kInputSpeedValid) ? s.input_speed_rad_s : kNaN);
-    series_[2].push_back(s.valid(storage::kTorqueValid) ? s.torque_nm : kNaN);
-    series_[3].push_back(s.valid(storage::kBrakeCurrentValid) ? s.brake_current_a : kNaN);
+    for (std::size_t k = 0; k < kPlotted.size(); ++k)
+      series_[k + 1].push_back(s.arrived(kPlotted[k]) ? s.value(kPlotted[k]) : kNaN);
   }
   const double width = params_.window_s / static_cast<double>(params_.columns);
   if (!t_.empty()) {
@@ -117,11 +120,10 @@ nlohmann::json LiveStreamFrames::frame() {
           std::span<const double>(t_.data(), n), spans, static_cast<double>(first_column) * width,
           static_cast<double>(end_column) * width,
           static_cast<std::size_t>(end_column - first_column));
-      j["rows"] = {{"t", rows.t},
-                   {"te_arcsec", values_json(rows.series[0])},
-                   {"input_speed_rad_s", values_json(rows.series[1])},
-                   {"torque_nm", values_json(rows.series[2])},
-                   {"brake_current_a", values_json(rows.series[3])}};
+      j["rows"] = {{"t", rows.t}, {"te_arcsec", values_json(rows.series[0])}};
+      for (std::size_t k = 0; k < kPlotted.size(); ++k)
+        j["rows"][std::string(storage::kCoreChannels[kPlotted[k]].column)] =
+            values_json(rows.series[k + 1]);
       j["full_resolution"] = rows.full_resolution;
       t_.erase(t_.begin(), t_.begin() + static_cast<std::ptrdiff_t>(n));
       for (auto& v : series_) v.erase(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(n));

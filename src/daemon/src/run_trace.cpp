@@ -223,29 +223,23 @@ nlohmann::json trace_json(const analysis::DecimatedTrace& d,
           {"full_resolution", d.full_resolution}};
 }
 
-// One channel of a sample: a core one, TE from the gear sense, or an extra one.
+// One channel of a sample: TE from the gear sense, or one of the sample's channels (the core
+// ones, then the extra ones, as SyncSample::value counts them).
 struct Channel {
   std::string name, unit;
-  enum class Kind { kCore, kTe, kExtra } kind = Kind::kCore;
-  std::size_t index = 0;  // core: position in kCoreValues; extra: position in the header
-};
-
-constexpr std::pair<storage::SampleFlag, double storage::SyncSample::*> kCoreValues[] = {
-    {storage::kThetaInValid, &storage::SyncSample::theta_in_rad},
-    {storage::kThetaOutValid, &storage::SyncSample::theta_out_rad},
-    {storage::kInputSpeedValid, &storage::SyncSample::input_speed_rad_s},
-    {storage::kTorqueValid, &storage::SyncSample::torque_nm},
-    {storage::kBrakeCurrentValid, &storage::SyncSample::brake_current_a},
-    {storage::kBrakeTorqueValid, &storage::SyncSample::brake_torque_nm},
+  enum class Kind { kSample, kTe } kind = Kind::kSample;
+  std::size_t position = 0;  // kSample: the channel's position in the sample
 };
 
 std::vector<Channel> known_channels(const std::vector<storage::ChannelInfo>& extra) {
   std::vector<Channel> known{{"te_arcsec", "arcsec", Channel::Kind::kTe, 0}};
-  const auto core = storage::core_channels();
-  for (std::size_t i = 0; i < core.size() && i < std::size(kCoreValues); ++i)
-    known.push_back({core[i].name, core[i].unit, Channel::Kind::kCore, i});
+  for (std::size_t i = 0; i < storage::kCoreChannels.size(); ++i) {
+    const auto& c = storage::kCoreChannels[i];
+    known.push_back({std::string(c.name), std::string(c.unit), Channel::Kind::kSample, i});
+  }
   for (std::size_t i = 0; i < extra.size() && i < storage::kMaxExtraChannels; ++i)
-    known.push_back({extra[i].name, extra[i].unit, Channel::Kind::kExtra, i});
+    known.push_back(
+        {extra[i].name, extra[i].unit, Channel::Kind::kSample, storage::kCoreChannelCount + i});
   return known;
 }
 
@@ -276,16 +270,12 @@ std::vector<Channel> requested_channels(const HttpTarget& target,
 double channel_value(const Channel& c, const storage::SyncSample& s,
                      const std::optional<model::GearSense>& sense) {
   switch (c.kind) {
-    case Channel::Kind::kCore: {
-      const auto& [flag, member] = kCoreValues[c.index];
-      return s.valid(flag) ? s.*member : kNan;
-    }
+    case Channel::Kind::kSample:
+      return s.arrived(c.position) ? s.value(c.position) : kNan;
     case Channel::Kind::kTe:
       if (!sense || !s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid))
         return kNan;
       return sense->transmission_error(s.theta_in_rad, s.theta_out_rad) * kArcsecPerRad;
-    case Channel::Kind::kExtra:
-      return s.extra_arrived(c.index) ? s.extra[c.index] : kNan;
   }
   return kNan;
 }

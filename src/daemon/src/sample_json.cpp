@@ -10,21 +10,6 @@ namespace wavebench::daemon {
 
 namespace {
 
-struct Channel {
-  const char* key;
-  storage::SampleFlag flag;
-  double storage::SyncSample::*value;
-};
-
-constexpr Channel kChannels[] = {
-    {"theta_in_rad", storage::kThetaInValid, &storage::SyncSample::theta_in_rad},
-    {"theta_out_rad", storage::kThetaOutValid, &storage::SyncSample::theta_out_rad},
-    {"input_speed_rad_s", storage::kInputSpeedValid, &storage::SyncSample::input_speed_rad_s},
-    {"torque_nm", storage::kTorqueValid, &storage::SyncSample::torque_nm},
-    {"brake_current_a", storage::kBrakeCurrentValid, &storage::SyncSample::brake_current_a},
-    {"brake_torque_nm", storage::kBrakeTorqueValid, &storage::SyncSample::brake_torque_nm},
-};
-
 template <typename T>
 T required(const nlohmann::json& json, const char* key) {
   const auto it = json.find(key);
@@ -71,11 +56,11 @@ void append_sample_json(std::string& out, const storage::SyncSample& sample,
   append_integer(out, sample.receive_time_ns);
   out += ",\"missed_before\":";
   append_integer(out, sample.missed_before);
-  for (const auto& c : kChannels) {
+  for (const auto& c : storage::kCoreChannels) {
     out += ",\"";
-    out += c.key;
+    out += c.column;
     out += "\":";
-    if (sample.valid(c.flag)) {
+    if (sample.valid(c.valid)) {
       append_double(out, sample.*c.value);
     } else {
       out += "null";
@@ -105,8 +90,8 @@ nlohmann::json sample_to_json(const storage::SyncSample& sample,
                       {"flags", sample.flags},
                       {"receive_time_ns", sample.receive_time_ns},
                       {"missed_before", sample.missed_before}};
-  for (const auto& c : kChannels) {
-    j[c.key] = sample.valid(c.flag) ? nlohmann::json(sample.*c.value) : nlohmann::json(nullptr);
+  for (const auto& c : storage::kCoreChannels) {
+    j[c.column] = sample.valid(c.valid) ? nlohmann::json(sample.*c.value) : nlohmann::json(nullptr);
   }
   if (!extra.empty()) {
     nlohmann::json e = nlohmann::json::object();
@@ -137,8 +122,8 @@ storage::SyncSample sample_from_json(const nlohmann::json& json,
   s.flags = required<std::uint32_t>(json, "flags");
   s.receive_time_ns = required<std::int64_t>(json, "receive_time_ns");
   s.missed_before = required<std::uint32_t>(json, "missed_before");
-  for (const auto& c : kChannels) {
-    const auto it = json.find(c.key);
+  for (const auto& c : storage::kCoreChannels) {
+    const auto it = json.find(c.column);
     if (it != json.end() && it->is_number()) s.*c.value = it->get<double>();
   }
   const auto e = json.find("extra");

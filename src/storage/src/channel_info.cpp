@@ -8,9 +8,11 @@
 namespace wavebench::storage {
 
 std::span<const ChannelInfo> core_channels() {
-  static const std::vector<ChannelInfo> channels{{"theta_in", "rad"},      {"theta_out", "rad"},
-                                                 {"input_speed", "rad/s"}, {"torque", "N*m"},
-                                                 {"brake_current", "A"},   {"brake_torque", "N*m"}};
+  static const std::vector<ChannelInfo> channels = [] {
+    std::vector<ChannelInfo> out;
+    for (const auto& c : kCoreChannels) out.push_back({std::string(c.name), std::string(c.unit)});
+    return out;
+  }();
   return channels;
 }
 

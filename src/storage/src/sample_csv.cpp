@@ -35,20 +35,15 @@ std::string unit_slug(const std::string& unit) {
 
 void write_samples_csv(std::span<const SyncSample> samples, std::ostream& out,
                        std::span<const ChannelInfo> extra) {
-  out << "index,sync_counter,receive_time_ns,theta_in_rad,theta_out_rad,input_speed_rad_s,"
-         "torque_nm,brake_current_a,brake_torque_nm";
+  out << "index,sync_counter,receive_time_ns";
+  for (const auto& c : kCoreChannels) out << ',' << c.column;
   const std::size_t extras = std::min(extra.size(), kMaxExtraChannels);
   for (std::size_t i = 0; i < extras; ++i)
     out << ',' << extra[i].name << '_' << unit_slug(extra[i].unit);
   out << ",missed_before,gap,counter_anomaly\n";
   for (const auto& s : samples) {
     out << s.index << ',' << s.sync_counter << ',' << s.receive_time_ns;
-    field(out, s.valid(kThetaInValid), s.theta_in_rad);
-    field(out, s.valid(kThetaOutValid), s.theta_out_rad);
-    field(out, s.valid(kInputSpeedValid), s.input_speed_rad_s);
-    field(out, s.valid(kTorqueValid), s.torque_nm);
-    field(out, s.valid(kBrakeCurrentValid), s.brake_current_a);
-    field(out, s.valid(kBrakeTorqueValid), s.brake_torque_nm);
+    for (const auto& c : kCoreChannels) field(out, s.valid(c.valid), s.*c.value);
     for (std::size_t i = 0; i < extras; ++i) field(out, s.extra_arrived(i), s.extra[i]);
     out << ',' << s.missed_before << ',' << ((s.flags & kGapBefore) ? 1 : 0) << ','
         << ((s.flags & kCounterAnomaly) ? 1 : 0) << '\n';

@@ -35,18 +35,18 @@ std::int64_t realtime_ns() {
 
 constexpr std::size_t kChannelEntryBytes = 48;  // 32-byte name + 16-byte unit
 
+// Versions 1 and 2 hold six core values at offsets 24..71, then missed_before at 72: a seventh
+// core channel is a new record layout, so a new version (keep reading these).
+static_assert(kCoreChannels.size() == 6 && kCoreChannels.back().record_offset + 8 == 72,
+              "a core channel changes the sample log record: bump kSampleLogVersion");
+
 SyncSample decode_record(const unsigned char* r, std::size_t extra_channels) {
   SyncSample s;
   s.index = get_u64(r + 0);
   s.sync_counter = get_u32(r + 8);
   s.flags = get_u32(r + 12);
   s.receive_time_ns = static_cast<std::int64_t>(get_u64(r + 16));
-  s.theta_in_rad = get_f64(r + 24);
-  s.theta_out_rad = get_f64(r + 32);
-  s.input_speed_rad_s = get_f64(r + 40);
-  s.torque_nm = get_f64(r + 48);
-  s.brake_current_a = get_f64(r + 56);
-  s.brake_torque_nm = get_f64(r + 64);
+  for (const auto& c : kCoreChannels) s.*c.value = get_f64(r + c.record_offset);
   s.missed_before = get_u32(r + 72);
   if (extra_channels > 0) {
     s.extra_valid = get_u32(r + 76) & ((1U << extra_channels) - 1U);
@@ -231,12 +231,7 @@ std::vector<unsigned char> encode_sample_record(const SyncSample& s, std::size_t
   put_u32(&r[8], s.sync_counter);
   put_u32(&r[12], s.flags);
   put_u64(&r[16], static_cast<std::uint64_t>(s.receive_time_ns));
-  put_f64(&r[24], s.theta_in_rad);
-  put_f64(&r[32], s.theta_out_rad);
-  put_f64(&r[40], s.input_speed_rad_s);
-  put_f64(&r[48], s.torque_nm);
-  put_f64(&r[56], s.brake_current_a);
-  put_f64(&r[64], s.brake_torque_nm);
+  for (const auto& c : kCoreChannels) put_f64(&r[c.record_offset], s.*c.value);
   put_u32(&r[72], s.missed_before);
   if (extra_channels > 0) {
     put_u32(&r[76], s.extra_valid & ((1U << extra_channels) - 1U));

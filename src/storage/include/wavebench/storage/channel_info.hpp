@@ -16,7 +16,7 @@ struct ChannelInfo {
 inline constexpr std::size_t kMaxChannelNameBytes = 31;
 inline constexpr std::size_t kMaxChannelUnitBytes = 15;
 
-// The six channels every sample has, in SyncSample's order.
+// kCoreChannels' names and units, in its order (sync_sample.hpp).
 std::span<const ChannelInfo> core_channels();
 
 // Throws std::invalid_argument naming the channel when a name or unit is empty, too long or
