@@ -5,6 +5,7 @@
 
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/model/gear_params.hpp"
+#include "wavebench/simdevices/simulated_bench.hpp"
 
 namespace wavebench::testing {
 
@@ -14,6 +15,13 @@ inline const model::GearParams& simulated_devices_gear() {
                              "/configs/benches/simulated-devices-gear.yaml")
           .gear;
   return gear;
+}
+
+// The simulated devices' defaults with that gear.
+inline simdevices::SimulatedBenchConfig simulated_devices_config() {
+  simdevices::SimulatedBenchConfig config;
+  config.gear = simulated_devices_gear();
+  return config;
 }
 
 }  // namespace wavebench::testing
