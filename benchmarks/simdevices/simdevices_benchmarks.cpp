@@ -5,6 +5,8 @@
 #include <boost/asio/io_context.hpp>
 
 #include "wavebench/can/virtual_can_bus.hpp"
+#include "wavebench/config/shipped_configs.hpp"
+#include "wavebench/config/twin_case.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
 
 namespace {
@@ -12,6 +14,15 @@ namespace {
 using wavebench::simdevices::BenchClock;
 using wavebench::simdevices::SimulatedBench;
 using wavebench::simdevices::SimulatedBenchConfig;
+
+// The simulated devices' default unit, as `wavebench simbench` loads it.
+const wavebench::model::GearParams& simulated_devices_gear() {
+  static const auto gear =
+      wavebench::config::load_twin_case(wavebench::config::shipped_config_dir() / "benches" /
+                                        "simulated-devices-gear.yaml")
+          .gear;
+  return gear;
+}
 
 void enable_velocity_mode(SimulatedBench& bench) {
   auto& od = bench.drive().od();
@@ -33,6 +44,7 @@ void BM_AdvanceOneSimulatedSecond(benchmark::State& state) {
   wavebench::can::VirtualCanBus bus(io);
   auto ep = bus.endpoint("simbench");
   SimulatedBenchConfig config;
+  config.gear = simulated_devices_gear();
   config.clock = BenchClock::kManual;
   SimulatedBench bench(config, *ep);
   bench.start();
@@ -55,6 +67,7 @@ void BM_ThousandSyncCycles(benchmark::State& state) {
   auto master = bus.endpoint("master");
   auto devices = bus.endpoint("simbench");
   SimulatedBenchConfig config;
+  config.gear = simulated_devices_gear();
   config.clock = BenchClock::kSyncDriven;
   SimulatedBench bench(config, *devices);
   bench.start();

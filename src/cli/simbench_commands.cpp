@@ -14,6 +14,7 @@
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/can/socket_can_bus.hpp"
+#include "wavebench/config/shipped_configs.hpp"
 #include "wavebench/config/twin_case.hpp"
 #include "wavebench/modbus/modbus_endpoint.hpp"
 #include "wavebench/simdevices/brake_server.hpp"
@@ -45,7 +46,13 @@ simdevices::SimulatedBenchConfig build_config(const SimbenchOptions& o) {
     config.clock = simdevices::BenchClock::kRealTime;
   }
   if (!o.config.empty()) config = simdevices::load_simulated_bench_config(o.config, config);
-  if (!o.gear.empty()) config.gear = wavebench::config::load_twin_case(o.gear).gear;
+  if (!o.gear.empty()) {
+    config.gear = wavebench::config::load_twin_case(o.gear).gear;
+  } else if (o.bench_config.empty()) {
+    config.gear = wavebench::config::load_twin_case(wavebench::config::shipped_config_dir() /
+                                                    "benches" / "simulated-devices-gear.yaml")
+                      .gear;
+  }
   if (o.clock == "realtime") {
     config.clock = simdevices::BenchClock::kRealTime;
   } else if (o.clock == "sync") {
@@ -132,7 +139,8 @@ void register_simbench_commands(CLI::App& app, ExitStatus& status) {
   cmd->add_option("--bench-config", options->bench_config,
                   "bench YAML (configs/benches/sim.yaml): serve its simulated unit and devices");
   cmd->add_option("--gear", options->gear,
-                  "twin-case YAML whose gear is the bench's true gear (default: built in)");
+                  "twin-case YAML whose gear is the bench's true gear (default: the bench "
+                  "config's, else configs/benches/simulated-devices-gear.yaml)");
   cmd->add_option("--clock", options->clock, "realtime (default) or sync (one cycle per SYNC)");
   cmd->add_option("--drive-node", options->drive_node, "servo drive node id (default 1)")
       ->check(CLI::Range(1, 127));

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 #include <unistd.h>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "vcan_support.hpp"
 #include "wavebench/can/socket_can_bus.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
@@ -24,7 +25,7 @@ class VcanCli : public ::testing::Test {
     WAVEBENCH_REQUIRE_VCAN();
     ASSERT_EQ(::access(cli.c_str(), X_OK), 0) << cli << " is not built";
     devices = std::make_unique<SocketCanBus>(io, kVcan);
-    simdevices::SimulatedBenchConfig config;
+    simdevices::SimulatedBenchConfig config = wavebench::testing::simulated_devices_config();
     config.clock = simdevices::BenchClock::kSyncDriven;  // time moves only with SYNC
     bench = std::make_unique<simdevices::SimulatedBench>(config, *devices);
     bench->start();

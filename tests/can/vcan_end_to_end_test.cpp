@@ -6,6 +6,7 @@
 
 #include <map>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "vcan_support.hpp"
 #include "wavebench/can/socket_can_bus.hpp"
 #include "wavebench/canopen/cia402_drive.hpp"
@@ -41,7 +42,7 @@ TEST(VcanEndToEnd, MasterRunsTheSimulatedBench) {
 
   can::SocketCanBus master(io, kVcan);
   can::SocketCanBus devices(io, kVcan);
-  simdevices::SimulatedBenchConfig config;
+  simdevices::SimulatedBenchConfig config = wavebench::testing::simulated_devices_config();
   config.clock = simdevices::BenchClock::kSyncDriven;
   simdevices::SimulatedBench bench(config, devices);
   bench.start();

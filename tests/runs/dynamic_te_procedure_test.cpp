@@ -5,6 +5,7 @@
 
 #include <cmath>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 
@@ -19,7 +20,7 @@ const procedures::NamedPeak* peak_near(const procedures::DynamicTeResult& r, dou
 }
 
 TEST(DynamicTeProcedure, NamesOutputOnceRevAndMeshAndListsAliasedTeethLines) {
-  const auto gear = simdevices::default_bench_gear();
+  const auto gear = wavebench::testing::simulated_devices_gear();
   testing::PlantBench bench(gear);
   bench.connect();
   DynamicTeOptions o;  // 100 rpm, two output revolutions: 200 and 202 in separate bins

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "gear_truth.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
@@ -11,7 +12,7 @@ namespace wavebench::runs {
 namespace {
 
 TEST(LostMotionProcedure, LostMotionAndStiffnessMatchTheUnitsTruth) {
-  const auto gear = simdevices::default_bench_gear();
+  const auto gear = wavebench::testing::simulated_devices_gear();
   testing::PlantBench bench(gear);
   bench.connect();
   LostMotionOptions o;

@@ -9,6 +9,7 @@
 #include <fstream>
 #include <thread>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/runs/run_limits.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
@@ -51,7 +52,7 @@ RunRequest small_static() {
 }
 
 TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   const std::uint64_t before = bench.acquisition_stats().samples;
   std::vector<RunProgress> progress;
@@ -86,7 +87,7 @@ TEST_F(RunExecutorTest, StaticRunWritesEverySampleResultsAndAVerdict) {
 }
 
 TEST_F(RunExecutorTest, TheRequestsUnitSerialAndOperatorAreRecorded) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   auto request = small_static();
   request.unit_serial = "CSF25-100/2026-0042";
@@ -100,7 +101,7 @@ TEST_F(RunExecutorTest, TheRequestsUnitSerialAndOperatorAreRecorded) {
 }
 
 TEST_F(RunExecutorTest, ATightLimitFailsTheRun) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   auto request = small_static();
   request.options["limits"] = {{"static_p2p_arcmin", 1.0}};
@@ -112,7 +113,7 @@ TEST_F(RunExecutorTest, ATightLimitFailsTheRun) {
 }
 
 TEST_F(RunExecutorTest, AnOperatorStopFromAnotherThreadAbortsWithTheReasonAndKeepsTheSamples) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   std::atomic<bool> reverse_started{false};
   std::thread operator_thread([&] {
@@ -150,7 +151,7 @@ TEST_F(RunExecutorTest, ASafetyTripMidRunIsAnAbortNotAnException) {
   testing::PlantBenchOptions o;
   o.trip_at_s = 3.0;
   o.trip_reason = "over-torque: 151 N·m > 150 N·m";
-  testing::PlantBench bench(simdevices::default_bench_gear(), o);
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear(), o);
   bench.connect();
   RunRequest r = small_static();
   r.procedure = "lost-motion";
@@ -164,7 +165,7 @@ TEST_F(RunExecutorTest, ASafetyTripMidRunIsAnAbortNotAnException) {
 }
 
 TEST_F(RunExecutorTest, BadRequestsNameTheKeyAndCreateNothing) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   const auto expect_refused = [&](RunRequest r, const std::string& needle) {
     try {
@@ -214,7 +215,7 @@ namespace wavebench::runs {
 namespace {
 
 TEST_F(RunExecutorTest, TheTwinRunsBesideAndTheReportIsWritten) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   auto request = small_static();
   request.twin = true;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "gear_truth.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
@@ -19,7 +20,7 @@ using testing::Stats;
 using testing::stats;
 
 TEST(StaticTeProcedure, EveryPassMatchesTheUnitsTruthWithinATenthOfAnArcminute) {
-  const auto gear = simdevices::default_bench_gear();
+  const auto gear = wavebench::testing::simulated_devices_gear();
   PlantBench bench(gear);
   bench.connect();
   StaticTeOptions o;
@@ -72,7 +73,7 @@ TEST(StaticTeProcedure, EveryPassMatchesTheUnitsTruthWithinATenthOfAnArcminute) 
 // The console's live TE-against-output-angle view: one point per settled position, as it is
 // measured, with the figures results.json gives that position.
 TEST(StaticTeProcedure, ReportsEachSettledPositionAsResultsGiveIt) {
-  PlantBench bench(simdevices::default_bench_gear());
+  PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   StaticTeOptions o;
   o.positions = 4;

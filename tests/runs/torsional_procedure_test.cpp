@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "gear_truth.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
@@ -12,7 +13,7 @@ namespace wavebench::runs {
 namespace {
 
 TEST(TorsionalProcedure, LoopOnThePlantBenchGivesTheUnitsStiffnessAndBacklash) {
-  const auto gear = simdevices::default_bench_gear();
+  const auto gear = wavebench::testing::simulated_devices_gear();
   testing::PlantBench bench(gear);  // rated 80 N·m, brake limit 100 N·m
   bench.connect();
   TorsionalOptions o;
@@ -49,7 +50,7 @@ TEST(TorsionalProcedure, LoopOnThePlantBenchGivesTheUnitsStiffnessAndBacklash) {
 }
 
 TEST(TorsionalProcedure, AnOutputThatMovesIsSlipAndAbortsWithTheReason) {
-  testing::PlantBench bench(simdevices::default_bench_gear());
+  testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
   bench.connect();
   TorsionalOptions o;
   o.slip_threshold_rad = 1e-9;  // below the encoder's noise: every point "slips"

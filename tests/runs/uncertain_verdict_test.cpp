@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "plant_bench.hpp"
 #include "repeat_combination.hpp"
 #include "verdict_table.hpp"
@@ -173,7 +174,7 @@ TEST(RepeatCombination, AStaticRunWithRepeatsKeepsEachRepeatAndReportsTheirMean)
   fs::remove_all(root);
   {
     storage::RunStore store(root, "test");
-    testing::PlantBench bench(simdevices::default_bench_gear());
+    testing::PlantBench bench(wavebench::testing::simulated_devices_gear());
     bench.connect();
     RunRequest r;
     r.procedure = "static";
@@ -209,7 +210,7 @@ TEST(RepeatCombination, AStaticRunWithRepeatsKeepsEachRepeatAndReportsTheirMean)
 }
 
 TEST(RepeatCombination, RepeatsAreRefusedOutsideOneToAHundredNamingTheKey) {
-  const auto& bench_gear = simdevices::default_bench_gear();
+  const auto& bench_gear = wavebench::testing::simulated_devices_gear();
   testing::PlantBench bench(bench_gear);
   RunRequest r;
   r.procedure = "dynamic";

@@ -9,6 +9,7 @@
 #include <memory>
 #include <vector>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "wavebench/can/virtual_can_bus.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
 
@@ -61,7 +62,7 @@ class BenchFixture : public ::testing::Test {
     return out;
   }
 
-  SimulatedBenchConfig config;
+  SimulatedBenchConfig config = wavebench::testing::simulated_devices_config();
   boost::asio::io_context io;
   std::unique_ptr<can::VirtualCanBus> bus;
   std::unique_ptr<can::VirtualCanEndpoint> master;

@@ -3,6 +3,7 @@
 // exact) with the configured layout, sent on every SYNC; the RPDOs stay writable.
 #include <gtest/gtest.h>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "bench_fixture.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 
@@ -91,6 +92,7 @@ TEST(FixedTpdoConfig, AnObjectTheDeviceLacksIsRefusedWhenBuilt) {
   auto c = parse_simulated_bench_config(
       "simbench: {drive: {absent_objects: [\"0x60F4\"], fixed_tpdo_mapping: {tpdo2: "
       "[\"0x60F4:0/32\"]}}}");
+  c.gear = wavebench::testing::simulated_devices_gear();
   boost::asio::io_context io;
   can::VirtualCanBus bus(io);
   auto ep = bus.endpoint("simbench");

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "wavebench/model/backlash.hpp"
 #include "wavebench/model/bouc_wen_spring.hpp"
 #include "wavebench/model/coulomb_stribeck_friction.hpp"
@@ -49,7 +50,7 @@ std::vector<model::StiffnessParams> memoryless_forms() {
 
 TEST(BenchPlantLaws, MemorylessStiffnessIsTheModelsOnASweep) {
   for (const auto& form : memoryless_forms()) {
-    model::GearParams p = default_bench_gear();
+    model::GearParams p = wavebench::testing::simulated_devices_gear();
     p.stiffness = form;
     const SimulatedBenchPlant plant(p);
     const model::ElasticStiffness law(form);
@@ -90,7 +91,7 @@ void expect_memory_law(const model::GearParams& p, const Law& law) {
 }
 
 TEST(BenchPlantLaws, MemoryStiffnessIsTheModelsAtThePlantsState) {
-  model::GearParams p = default_bench_gear();
+  model::GearParams p = wavebench::testing::simulated_devices_gear();
   const model::HystereticBranchStiffness branches{0, 0, 0.15, 0, 0, 0.30};
   p.stiffness.law = branches;
   expect_memory_law(p, model::HystereticBranchSpring(branches));
@@ -104,7 +105,7 @@ TEST(BenchPlantLaws, MemoryStiffnessIsTheModelsAtThePlantsState) {
 
 TEST(BenchPlantLaws, BacklashIsTheModelsDeadZoneSharpAndSmoothed) {
   for (const double smoothing : {0.0, 0.1 * kArcmin}) {
-    model::GearParams p = default_bench_gear();
+    model::GearParams p = wavebench::testing::simulated_devices_gear();
     p.backlash = {0.6 * kArcmin, smoothing};
     const SimulatedBenchPlant plant(p);
     const model::BacklashDeadZone law(p.backlash);
@@ -118,7 +119,7 @@ TEST(BenchPlantLaws, FrictionIsTheModelsOnEitherShaftWithLuGresBristles) {
   const model::CoulombStribeckFriction cs{0.02, 0.03, 0.5, 1e-5, 1e-2};
   const model::LuGreFriction lugre{5.0, 0.001, 1e-4, 0.02, 0.03, 0.5};
   for (const auto side : {model::FrictionSide::kInput, model::FrictionSide::kOutput}) {
-    model::GearParams p = default_bench_gear();
+    model::GearParams p = wavebench::testing::simulated_devices_gear();
     p.friction_side = side;
     p.friction = cs;
     {
@@ -144,7 +145,7 @@ TEST(BenchPlantLaws, FrictionIsTheModelsOnEitherShaftWithLuGresBristles) {
 }
 
 TEST(BenchPlantLaws, TeExcitationIsTheModelsOnASweep) {
-  const model::GearParams p = default_bench_gear();
+  const model::GearParams p = wavebench::testing::simulated_devices_gear();
   const SimulatedBenchPlant plant(p);
   const model::TeExcitation law(p.te_terms);
   for (const double th1 : sweep(300, 60)) {
@@ -164,10 +165,10 @@ void expect_refused(const model::GearParams& p, const std::string& key) {
 }
 
 TEST(BenchPlantLaws, AKeyThePlantCannotSimulateIsRefusedByName) {
-  model::GearParams p = default_bench_gear();
+  model::GearParams p = wavebench::testing::simulated_devices_gear();
   p.load.brake = model::PowderBrakeParams{};
   expect_refused(p, "load.brake");
-  p = default_bench_gear();
+  p = wavebench::testing::simulated_devices_gear();
   p.friction_side = model::FrictionSide::kOutput;
   p.friction = model::CoulombStribeckFriction{0.5, 0.5, 0.5, 0, 1e-7};
   expect_refused(p, "friction.smoothing_speed");
@@ -184,7 +185,7 @@ namespace {
 // Under a slow, smooth drive (motor torque ramps, output held by the brake; no servo) the
 // plant's Bouc-Wen loop is the law's own quasi-static loop: the same zero-torque crossings.
 TEST(BenchPlantLaws, SlowlyDrivenBoucWenLoopIsTheLawsQuasiStaticLoop) {
-  model::GearParams p = default_bench_gear();
+  model::GearParams p = wavebench::testing::simulated_devices_gear();
   p.te_terms.clear();
   p.backlash.total_rad = 0;
   p.friction = model::NoFriction{};

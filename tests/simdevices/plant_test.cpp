@@ -6,13 +6,14 @@
 #include <cmath>
 #include <numbers>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 
 namespace wavebench::simdevices {
 namespace {
 
 model::GearParams quiet_gear() {
-  model::GearParams p = default_bench_gear();
+  model::GearParams p = wavebench::testing::simulated_devices_gear();
   p.te_terms.clear();
   p.friction = model::NoFriction{};
   p.viscous_input = 0;
@@ -24,7 +25,7 @@ model::GearParams quiet_gear() {
 }
 
 TEST(BenchPlant, TeExcitationIsTheSumOfTheTermsOverBothAngles) {
-  const model::GearParams p = default_bench_gear();
+  const model::GearParams p = wavebench::testing::simulated_devices_gear();
   SimulatedBenchPlant plant(p);
   for (const double th1 : {0.0, 1.3, 250.0}) {
     for (const double th2 : {0.0, 0.4, -2.0}) {
@@ -39,9 +40,9 @@ TEST(BenchPlant, TeExcitationIsTheSumOfTheTermsOverBothAngles) {
 }
 
 TEST(BenchPlant, StartsAtRestWithTheMeshUnloadedDespiteATeOffset) {
-  // default_bench_gear() carries a 1.75 arcmin constant TE term: at theta2 = 0 the spring
-  // would be preloaded by it and the output would ring when the bench starts.
-  SimulatedBenchPlant plant(default_bench_gear());
+  // wavebench::testing::simulated_devices_gear() carries a 1.75 arcmin constant TE term: at theta2
+  // = 0 the spring would be preloaded by it and the output would ring when the bench starts.
+  SimulatedBenchPlant plant(wavebench::testing::simulated_devices_gear());
   EXPECT_NEAR(plant.state().theta_out + plant.te_excitation(0, plant.state().theta_out), 0, 1e-12);
   double peak_speed = 0;
   for (int i = 0; i < 200; ++i) {
@@ -107,7 +108,7 @@ TEST(BenchPlant, BrakeHoldsBelowItsSettingAndSlipsAbove) {
 }
 
 TEST(BenchPlant, RejectsUnusableParametersNamingThem) {
-  model::GearParams p = default_bench_gear();
+  model::GearParams p = wavebench::testing::simulated_devices_gear();
   p.inertia_output = 0;
   try {
     SimulatedBenchPlant plant(p);
@@ -115,7 +116,7 @@ TEST(BenchPlant, RejectsUnusableParametersNamingThem) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("inertia_output"), std::string::npos);
   }
-  p = default_bench_gear();
+  p = wavebench::testing::simulated_devices_gear();
   p.geometry.ratio = 0;
   p.geometry.z_circ = p.geometry.z_flex;
   EXPECT_THROW(SimulatedBenchPlant{p}, std::invalid_argument);

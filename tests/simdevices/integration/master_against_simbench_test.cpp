@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "../../support/simulated_devices_gear.hpp"
 #include "wavebench/can/virtual_can_bus.hpp"
 #include "wavebench/canopen/cia402_drive.hpp"
 #include "wavebench/canopen/cia406_encoder.hpp"
@@ -26,7 +27,7 @@ using namespace std::chrono_literals;
 class MasterAgainstSimBench : public ::testing::Test {
  protected:
   void SetUp() override {
-    SimulatedBenchConfig config;
+    SimulatedBenchConfig config = wavebench::testing::simulated_devices_config();
     config.clock = BenchClock::kRealTime;
     bus = std::make_unique<can::VirtualCanBus>(io);
     master = bus->endpoint("master");

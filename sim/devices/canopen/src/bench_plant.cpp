@@ -12,8 +12,6 @@
 namespace wavebench::simdevices {
 namespace {
 
-constexpr double kArcmin = std::numbers::pi / (180.0 * 60.0);
-
 std::string num(double v) {
   char buf[32];
   std::snprintf(buf, sizeof buf, "%.6g", v);
@@ -269,49 +267,6 @@ void SimulatedBenchPlant::substep(double h) {
   s.brake_torque = brake;
   s.shaft_torque = t_load - brake;
   s.friction_torque = friction;
-}
-
-model::GearParams default_bench_gear() {
-  // The character of seed 004's unit (bench.md §4): no-load static TE over one output
-  // revolution p2p ~5.2 arcmin, std ~1.8 arcmin, mean ~-1.75 arcmin with ~0.3 arcmin between
-  // the directions, and a ~4.7 arcmin mean shift under 60 N*m. The geometry is the twin case's
-  // (configs/twin/bench-unit-seed004.yaml, N = 100); amplitudes, phases, stiffness and the
-  // mechanics differ from its nominal values on purpose: these are the unit's "true" ones.
-  model::GearParams p;
-  p.name = "simulated bench gear (true parameters)";
-  p.geometry.z_flex = 200;
-  p.geometry.z_circ = 202;
-  p.geometry.wave_number = 2;
-  p.geometry.ratio = 100;
-  p.geometry.direction_sign = 1;
-  p.inertia_input = 1.2e-4;  // servo rotor + wave generator
-  p.inertia_output = 0.04;   // flange, torque sensor, brake rotor
-  p.viscous_input = 2e-5;
-  p.viscous_output = 0.05;
-  const double u = 2;
-  const double half_pi = std::numbers::pi / 2;
-  p.te_terms = {
-      // The output encoder's zero against the input's: a constant TE offset.
-      {"assembly offset", model::TeFamily::kCustom, 1.75 * kArcmin, 0, 0, half_pi},
-      {"output flange eccentricity (1/rev)", model::TeFamily::kOutputOnceRev, 2.4 * kArcmin, 0, 1,
-       0.3},
-      {"output 2/rev (Flexspline ovality)", model::TeFamily::kCustom, 0.5 * kArcmin, 0, 2, 0.9},
-      {"dF_i1 (Flexspline tangential composite error)", model::TeFamily::kTangentialOutput,
-       0.25 * kArcmin, u, u, 0.4},
-      {"dF_i2 (fixed circular spline tangential composite error)",
-       model::TeFamily::kTangentialFixed, 0.18 * kArcmin, u, 0, 1.3},
-      {"Flexspline tooth pitch (z_F per output revolution)", model::TeFamily::kCustom,
-       0.12 * kArcmin, 0, 200, 0.2},
-      // U*z_C per wave-generator revolution: 673 Hz at 100 rpm, above a 1 kHz SYNC's Nyquist.
-      {"df_i1 (base pitch)", model::TeFamily::kToothMesh, 0.03 * kArcmin, u * 202, 0, 0.3},
-  };
-  p.stiffness.law = model::ThreeSegmentStiffness{3.2e4, 14, 4.6e4, 48, 6.2e4};
-  p.backlash.total_rad = 0.3 * kArcmin;
-  p.damping.damping_ratio = 0.06;
-  p.friction = model::CoulombStribeckFriction{0.02, 0.03, 0.5, 1e-5, 1e-2};
-  p.load.output_drag_coulomb = 0.3;
-  p.load.drag_smoothing_speed = 1e-3;
-  return p;
 }
 
 }  // namespace wavebench::simdevices

@@ -99,10 +99,4 @@ class SimulatedBenchPlant {
   PlantLawState law_;
 };
 
-// A gear the simulated bench can use out of the box, with the character of seed 004's unit
-// (N = 100 from 200/202 teeth, catalogue three-segment stiffness, 0.3 arcmin backlash, TE
-// harmonics of a few arcmin and a constant offset). These are the bench's "true" parameters,
-// deliberately not the twin's nominal ones.
-model::GearParams default_bench_gear();
-
 }  // namespace wavebench::simdevices

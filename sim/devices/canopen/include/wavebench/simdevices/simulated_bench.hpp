@@ -25,7 +25,9 @@ namespace wavebench::simdevices {
 enum class BenchClock { kManual, kSyncDriven, kRealTime };
 
 struct SimulatedBenchConfig {
-  model::GearParams gear = default_bench_gear();
+  // The unit's true gear, a twin case's (the bench factory's true_gear, simbench --gear, or
+  // configs/benches/simulated-devices-gear.yaml); none (ratio 0): the plant refuses it.
+  model::GearParams gear;
   ServoDriveConfig drive;
   EncoderConfig encoder;
   TorqueSensorConfig torque_sensor;
