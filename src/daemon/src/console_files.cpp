@@ -112,9 +112,9 @@ std::filesystem::path default_console_root() {
     const auto installed = exe.parent_path().parent_path() / "share" / "wavebench" / "web";
     if (std::filesystem::is_directory(installed, ec)) return installed;
   }
-#ifdef WAVEBENCH_BUILD_WEB_DIR
+  // The build tree's console (src/daemon/CMakeLists.txt defines it for every build): a daemon
+  // run from the build folder serves the pages it was built with.
   if (std::filesystem::is_directory(WAVEBENCH_BUILD_WEB_DIR, ec)) return WAVEBENCH_BUILD_WEB_DIR;
-#endif
   return {};
 }
 

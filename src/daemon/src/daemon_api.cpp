@@ -211,6 +211,100 @@ ApiResponse DaemonApi::handle(const ApiRequest& request) const noexcept {
   }
 }
 
+std::span<const ApiRoute> DaemonApi::routes() {
+  using R = RouteAuth;
+  using C = RouteCost;
+  using Call = RouteCall;
+  // Private members are reachable from here: the handlers are lambdas of this member function.
+  static const ApiRoute table[] = {
+      {"GET", "/api/status", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.status(); }},
+      {"GET", "/api/live", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.live(c.target); }},
+      {"GET", "/api/live/stream", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.live_stream(c.target); }},
+      // The session checks its own: logging in is how a caller gets a login.
+      {"GET", "/api/session", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.session(c.request); }},
+      {"POST", "/api/session", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.session(c.request); }},
+      {"DELETE", "/api/session", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.session(c.request); }},
+      {"POST", "/api/abort", R::kChange, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.abort_run(); }},
+      {"POST", "/api/stop", R::kStop, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.stop(); }},
+      {"POST", "/api/reset", R::kEngineer, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.reset(); }},
+      {"POST", "/api/manual/{action}", R::kChange, C::kCheap,
+       [](const DaemonApi& api, const Call& c) {
+         return manual_request(api.bench_, c.target.segments[2], c.request.body);
+       }},
+      {"GET", "/api/procedures", R::kNone, C::kCheap,
+       [](const DaemonApi&, const Call&) {
+         return ApiResponse{200, runs::procedures_json()};
+       }},
+      {"GET", "/api/specs", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.list_specs(); }},
+      {"GET", "/api/fleet/{query}", R::kNone, C::kRead,
+       [](const DaemonApi& api, const Call& c) {
+         if (!api.fleet_) return api_error(404, "not found", "no results store behind this API");
+         return api.fleet_(c.target);
+       }},
+      {"GET", "/api/bench/check", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call&) { return api.bench_check(); }},
+      {"GET", "/api/runs", R::kNone, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.list_runs(c.target); }},
+      {"POST", "/api/runs", R::kChange, C::kCheap,
+       [](const DaemonApi& api, const Call& c) { return api.start_run(c.request, c.caller); }},
+      {"GET", "/api/runs/{id}", R::kNone, C::kRead,
+       [](const DaemonApi& api, const Call& c) { return api.run_detail(c.target.segments[2]); }},
+      {"GET", "/api/runs/{run}/trace", R::kNone, C::kRead,
+       [](const DaemonApi& api, const Call& c) {
+         return run_trace(api.store_, c.target.segments[2], c.target);
+       }},
+      {"GET", "/api/runs/{run}/twin", R::kNone, C::kRead,
+       [](const DaemonApi& api, const Call& c) {
+         return run_twin_trace(api.store_, c.target.segments[2], c.target);
+       }},
+      {"GET", "/api/runs/{run}/export", R::kLogin, C::kDownload,
+       [](const DaemonApi& api, const Call& c) {
+         return run_export_download(api.store_, c.target.segments[2], c.target, c.slot);
+       }},
+      {"GET", "/api/runs/{id}/samples", R::kNone, C::kRead,
+       [](const DaemonApi& api, const Call& c) {
+         return api.run_samples(c.target.segments[2], c.target);
+       }},
+  };
+  return table;
+}
+
+std::optional<ApiResponse> DaemonApi::refuse(RouteAuth auth, const ApiRequest& request,
+                                             SessionIdentity& caller) const {
+  switch (auth) {
+    case RouteAuth::kNone:
+      return std::nullopt;
+    case RouteAuth::kStop:
+      return refuse_stop(request);
+    case RouteAuth::kChange:
+      return refuse_change(request, &caller);
+    case RouteAuth::kEngineer:
+      if (auto refused = refuse_change(request, &caller)) return refused;
+      if (caller.role != Role::kEngineer) {
+        return api_error(403, "forbidden",
+                         "role operator: a reset clears a fault, which is an engineer's call; "
+                         "ask an engineer (an account with role engineer)");
+      }
+      return std::nullopt;
+    case RouteAuth::kLogin:
+      if (has_login(request)) return std::nullopt;
+      return api_error(401, "unauthorized",
+                       "a run's samples need a login: log in at /login (the console sends its "
+                       "session), or send 'Authorization: Bearer <token>' (the CLI)");
+  }
+  return api_error(500, "internal error", "a route without a known auth");
+}
+
 ApiResponse DaemonApi::route(const ApiRequest& request) const {
   HttpTarget target;
   try {
@@ -235,119 +329,75 @@ ApiResponse DaemonApi::route(const ApiRequest& request) const {
     }
   }
   const auto& seg = target.segments;
-  const bool get = request.method == "GET";
+  const bool api_path = !seg.empty() && seg[0] == "api";
+  std::vector<std::string_view> allowed;
+  const ApiRoute* found = nullptr;
+  if (api_path) {
+    for (const auto& candidate : routes()) {
+      if (!route_matches(candidate.pattern, seg)) continue;
+      allowed.push_back(candidate.method);
+      if (candidate.method == request.method) found = &candidate;
+    }
+  } else {
+    allowed.push_back("GET");  // the console's files
+  }
+  const auto method_not_allowed = [&](const std::string& detail) {
+    auto answer = api_error(405, "method not allowed", detail);
+    if (!allowed.empty()) answer.headers.emplace_back("Allow", method_list_text(allowed));
+    return answer;
+  };
   if (request.method == "OPTIONS") {
     // No CORS preflight is ever granted: a page of another origin cannot send the console's
     // header, nor JSON, to this daemon.
-    return api_error(405, "method not allowed",
-                     "OPTIONS " + target.path + "; this daemon grants no cross-origin requests");
+    return method_not_allowed("OPTIONS " + target.path +
+                              "; this daemon grants no cross-origin requests");
   }
-  if (seg.empty() || seg[0] != "api") {
-    if (!get) {
-      return api_error(405, "method not allowed",
-                       request.method + " " + target.path + "; expected GET");
+  if (!api_path) {
+    if (request.method != "GET") {
+      return method_not_allowed(request.method + " " + target.path + "; expected GET");
     }
     return console_->answer(target);
   }
-  const bool post = request.method == "POST";
-  const auto method_not_allowed = [&](const char* allowed) {
-    return api_error(405, "method not allowed",
-                     request.method + " " + target.path + "; expected " + allowed);
-  };
+  if (allowed.empty()) return api_error(404, "not found", "no resource at " + target.path);
+  if (!found) {
+    return method_not_allowed(request.method + " " + target.path + "; expected " +
+                              method_list_text(allowed));
+  }
+  for (const auto index : run_id_segments(found->pattern)) {
+    if (!looks_like_run_id(seg[index]))
+      return api_error(404, "not found", "run '" + seg[index] + "' is not a run id");
+  }
   try {
-    if (seg.size() == 2 && seg[1] == "status") return get ? status() : method_not_allowed("GET");
-    if (seg.size() == 2 && seg[1] == "live") return get ? live(target) : method_not_allowed("GET");
-    if (seg.size() == 3 && seg[1] == "live" && seg[2] == "stream") {
-      return get ? live_stream(target) : method_not_allowed("GET");
-    }
-    if (seg.size() == 2 && seg[1] == "session") return session(request);
-    if (seg.size() == 2 && (seg[1] == "abort" || seg[1] == "stop" || seg[1] == "reset")) {
-      if (!post) return method_not_allowed("POST");
-      if (seg[1] == "stop") {
-        if (auto refused = refuse_stop(request)) return std::move(*refused);
-        return stop();
+    SessionIdentity caller;
+    if (auto refused = refuse(found->auth, request, caller)) return std::move(*refused);
+    RouteCall call{request, target, caller, nullptr};
+    const auto answer = [&] {
+      try {
+        return found->handler(*this, call);
+      } catch (const BadParameter& e) {
+        return api_error(400, "bad request", e.what());
       }
-      SessionIdentity caller;
-      if (auto refused = refuse_change(request, &caller)) return std::move(*refused);
-      if (seg[1] == "abort") return abort_run();
-      if (caller.role != Role::kEngineer) {
-        return api_error(403, "forbidden",
-                         "role operator: a reset clears a fault, which is an engineer's call; "
-                         "ask an engineer (an account with role engineer)");
-      }
-      return reset();
-    }
-    if (seg.size() == 3 && seg[1] == "manual") {
-      if (!post) return method_not_allowed("POST");
-      if (auto refused = refuse_change(request)) return std::move(*refused);
-      return manual_request(bench_, seg[2], request.body);
-    }
-    if (seg.size() == 2 && seg[1] == "procedures") {
-      return get ? ApiResponse{200, runs::procedures_json()} : method_not_allowed("GET");
-    }
-    if (seg.size() == 2 && seg[1] == "specs") return get ? list_specs() : method_not_allowed("GET");
-    if (seg.size() == 3 && seg[1] == "fleet") {
-      if (!get) return method_not_allowed("GET");
-      if (!fleet_) {
-        return api_error(404, "not found", "no results store behind this API");
-      }
-      return costly([&] { return fleet_(target); });
-    }
-    if (seg.size() == 3 && seg[1] == "bench" && seg[2] == "check")
-      return get ? bench_check() : method_not_allowed("GET");
-    if (seg.size() == 2 && seg[1] == "runs") {
-      if (get) return list_runs(target);
-      if (!post) return method_not_allowed("GET or POST");
-      SessionIdentity caller;
-      if (auto refused = refuse_change(request, &caller)) return std::move(*refused);
-      return start_run(request, caller);
-    }
-    if (seg.size() == 3 && seg[1] == "runs") {
-      if (!get) return method_not_allowed("GET");
-      return costly([&] { return run_detail(seg[2]); });
-    }
-    if (seg.size() == 4 && seg[1] == "runs" && (seg[3] == "trace" || seg[3] == "twin")) {
-      if (!get) return method_not_allowed("GET");
-      if (!looks_like_run_id(seg[2]))
-        return api_error(404, "not found", "run '" + seg[2] + "' is not a run id");
-      return costly([&] {
-        return seg[3] == "trace" ? run_trace(store_, seg[2], target)
-                                 : run_twin_trace(store_, seg[2], target);
-      });
-    }
-    if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "export") {
-      if (!get) return method_not_allowed("GET");
-      if (!looks_like_run_id(seg[2]))
-        return api_error(404, "not found", "run '" + seg[2] + "' is not a run id");
-      if (!has_login(request)) {
-        return api_error(401, "unauthorized",
-                         "a run's samples need a login: log in at /login (the console sends its "
-                         "session), or send 'Authorization: Bearer <token>' (the CLI)");
-      }
-      auto slot = downloads_->admit();
-      if (!slot) {
-        return busy(
-            std::to_string(kMaxDownloads) + " downloads are in progress; retry when one has ended",
-            5);
-      }
-      return costly([&] { return run_export_download(store_, seg[2], target, std::move(slot)); });
-    }
-    if (seg.size() == 4 && seg[1] == "runs" && seg[3] == "samples") {
-      if (!get) return method_not_allowed("GET");
-      return costly([&] {
-        try {
-          return run_samples(seg[2], target);
-        } catch (const BadParameter& e) {
-          return api_error(400, "bad request", e.what());
+    };
+    switch (found->cost) {
+      case RouteCost::kCheap:
+        return answer();
+      case RouteCost::kRead:
+        return costly(answer);
+      case RouteCost::kDownload:
+        call.slot = downloads_->admit();
+        if (!call.slot) {
+          return busy(std::to_string(kMaxDownloads) +
+                          " downloads are in progress; retry when one has ended",
+                      5);
         }
-      });
+        return costly(answer);
     }
   } catch (const BadParameter& e) {
     return api_error(400, "bad request", e.what());
   } catch (const std::exception& e) {
     return api_error(500, "internal error", e.what());
   }
-  return api_error(404, "not found", "no resource at " + target.path);
+  return api_error(500, "internal error", "a route without a known cost");
 }
 
 bool DaemonApi::has_login(const ApiRequest& request) const {

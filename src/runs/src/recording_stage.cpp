@@ -7,6 +7,7 @@
 
 #include "post_run_stages.hpp"
 #include "recording_clock.hpp"
+#include "recording_stages.hpp"
 #include "repeat_combination.hpp"
 #include "run_context.hpp"
 #include "run_request_check_detail.hpp"
@@ -79,114 +80,6 @@ void make_safe(bench::Bench& bench) noexcept {
   }
 }
 
-nlohmann::json acquisition_json(const bench::AcquisitionStats& a,
-                                const storage::SampleLogWriter& writer,
-                                const SampleLogObserver& log) {
-  const auto& g = writer.gap_totals();
-  return {{"samples_logged", writer.records_flushed()},
-          {"log_write_errors", log.samples_not_logged()},
-          {"log_queue_dropped", log.samples_dropped()},
-          {"log_first_error", log.failure()},
-          {"missed_syncs", g.missed_cycles},
-          {"incomplete_samples", g.incomplete_samples},
-          {"gaps", g.gaps},
-          {"counter_anomalies", g.anomalies},
-          {"bench_syncs_sent", a.syncs_sent},
-          {"bench_samples", a.samples},
-          {"bench_incomplete_samples", a.incomplete_samples},
-          {"bench_sync_late", a.sync_late},
-          {"bench_sync_skipped", a.sync_skipped},
-          {"bench_bus_load", a.bus_load}};
-}
-
-// The bench's measuring devices with the calibration its config states (null: not stated).
-nlohmann::json sensors_json(const std::vector<bench::SensorCalibration>& sensors) {
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& s : sensors) {
-    out.push_back({{"sensor", s.sensor},
-                   {"calibration_id", s.id.empty() ? nlohmann::json() : nlohmann::json(s.id)},
-                   {"calibration_due", s.due.empty() ? nlohmann::json() : nlohmann::json(s.due)}});
-  }
-  return out;
-}
-
-// results.json "spec": what the verdict was judged against.
-nlohmann::json spec_json(const ProductSpec& spec) {
-  const auto j = spec.to_json();
-  return {{"name", j["name"]},
-          {"model", j["model"]},
-          {"description", j["description"]},
-          {"lost_motion_at_percent", j["lost_motion_at_percent"]},
-          {"undecided", j["undecided"]},
-          {"limits", j["limits"]}};
-}
-
-nlohmann::json results_head(const RunContext& c, const bench::Bench& bench) {
-  const auto& d = c.description;
-  const auto& r = c.request;
-  return {{"schema", kResultsSchema},
-          {"run_id", c.outcome.run_id},
-          {"procedure", r.procedure},
-          {"unit_serial", c.unit_serial},
-          {"operator",
-           r.operator_name.empty() ? nlohmann::json(nullptr) : nlohmann::json(r.operator_name)},
-          {"bench", d.name},
-          {"bench_sensors", sensors_json(d.sensors)},
-          {"software_version", software_version()},
-          {"software_commit", software_commit()},
-          {"gear", {{"ratio", d.sense.ratio}, {"direction_sign", d.sense.direction_sign}}},
-          {"sync_period_s", d.sync_period_s},
-          {"simulated_clock", d.simulated_clock},
-          {"absent_channels", bench.absent_channels()},
-          {"options", c.parsed.procedure_options},
-          {"limits", c.parsed.limits},
-          {"spec", r.spec ? spec_json(*r.spec) : nlohmann::json()}};
-}
-
-// The twin beside the bench: the unit's own when it has one on disk now (calibrated over its
-// earlier runs, unit_twin_store.hpp), else the bench's nominal twin case.
-void choose_twin(RunContext& c) {
-  c.twin_gear = c.description.twin_gear;
-  c.twin_source = {{"kind", "nominal"}, {"case", c.description.twin_case_path}};
-  if (!c.request.twin || c.unit_serial.empty()) return;
-  try {
-    auto unit = twin::load_unit_twin(c.store->root(), c.unit_serial, c.description.sense.ratio);
-    if (!unit) return;
-    c.twin_gear = std::move(unit->twin.gear);
-    c.twin_solver = unit->solver;
-    nlohmann::json from = nlohmann::json::array();
-    for (const auto& r : unit->provenance.value("runs", nlohmann::json::array())) {
-      from.push_back({{"run_id", r.value("run_id", "")}, {"procedure", r.value("procedure", "")}});
-    }
-    c.twin_source = {{"kind", "unit"},
-                     {"case", std::filesystem::relative(unit->case_file, c.store->root()).string()},
-                     {"calibrated_from", from}};
-  } catch (const std::exception& e) {
-    c.results["warnings"].push_back(std::string(e.what()) + "; the nominal twin case is used");
-  }
-}
-
-void start_twin(RunContext& c) {
-  if (!c.request.twin) return;
-  try {
-    twin::TwinBesideBenchOptions options;
-    options.diagnosis.sensor_noise_rad = c.description.output_encoder_noise_rad;
-    if (c.request.on_diagnosis) {
-      // The context outlives the twin's thread (finish() joins it).
-      options.on_flag = [&c](const twin::DiagnosticFlag& flag) {
-        if (c.request.on_diagnosis) c.request.on_diagnosis(twin::to_json(flag));
-      };
-    }
-    options.solver = c.twin_solver;
-    options.overlay_csv = c.paths.dir / "twin.csv";
-    if (c.description.simulated_clock) options.lockstep_backlog = 1024;
-    c.twin_beside =
-        std::make_unique<twin::TwinBesideBench>(c.twin_gear, c.description.sense, options);
-  } catch (const std::exception& e) {
-    c.twin_json = {{"error", std::string("twin not started: ") + e.what()}};
-  }
-}
-
 }  // namespace
 
 RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunRequest& request,
@@ -216,31 +109,18 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
     progress({c.outcome.run_id, phase, timed.fraction, timed.remaining_s});
   };
 
-  c.results = results_head(c, bench);
-  choose_twin(c);
-  const auto extra_channels = bench.extra_channels();
-  if (!extra_channels.empty()) {
-    nlohmann::json channels = nlohmann::json::array();
-    for (const auto& ch : extra_channels) {
-      channels.push_back({{"name", ch.name}, {"unit", ch.unit}});
-    }
-    c.results["extra_channels"] = channels;
+  // The recording is the loop over its stages (recording_stages.hpp) around the procedure.
+  auto stages = recording_stages();
+  for (auto& stage : stages) {
+    if (c.complete()) stage->start(c, bench);
   }
-  std::optional<storage::SampleLogWriter> writer;
-  try {
-    storage::SampleLogWriterOptions options;
-    options.extra_channels = extra_channels;
-    writer.emplace(c.paths.samples, options);
-  } catch (const std::exception& e) {
-    c.abort_with(std::string("sample log not created, nothing moved: ") + e.what());
-  }
-  if (writer) {
-    SampleLogObserver log(*writer, bench);
-    start_twin(c);
+  if (c.complete()) {
     {
-      ObserverRegistration log_registration(bench, log);
-      std::optional<ObserverRegistration> twin_registration;
-      if (c.twin_beside) twin_registration.emplace(bench, *c.twin_beside);
+      std::vector<std::unique_ptr<ObserverRegistration>> registrations;
+      for (auto& stage : stages) {
+        if (stage->observes())
+          registrations.push_back(std::make_unique<ObserverRegistration>(bench, *stage));
+      }
       report_progress(request.procedure + " start", 0);
       if (auto* static_te = std::get_if<StaticTeProcedure>(&c.parsed.procedure)) {
         static_te->set_point_sink(request.on_point);
@@ -255,38 +135,31 @@ RecordedRun record_run(bench::Bench& bench, storage::RunStore& store, const RunR
             }
           },
           c.parsed.procedure);
+      // A trip a stage asked for (the sample log's failing disk) is reported as that stage's
+      // reason, not as an operator stop.
+      const auto stage_trip = [&stages]() -> std::optional<std::string> {
+        for (const auto& stage : stages) {
+          if (auto reason = stage->trip_reason()) return reason;
+        }
+        return std::nullopt;
+      };
       try {
         c.procedure_result =
             run_procedure(c.parsed.procedure, bench, c.parsed.repeats, report_progress);
       } catch (const bench::BenchAborted& e) {
-        // A trip the log asked for is reported as the log's failure, not as an operator stop.
-        c.abort_with(log.failed() ? log.failure() : std::string(e.what()));
+        c.abort_with(stage_trip().value_or(std::string(e.what())));
       } catch (const std::exception& e) {
         make_safe(bench);
-        c.abort_with(log.failed() ? log.failure() : std::string("procedure failed: ") + e.what());
+        c.abort_with(stage_trip().value_or(std::string("procedure failed: ") + e.what()));
       }
     }
-    // Every queued sample to the file before the run is finalised. The log may fail after the
-    // procedure's last blocking call, or while draining: the run is still missing samples.
-    log.finish();
-    if (log.failed()) c.abort_with(log.failure());
+    for (auto& stage : stages) stage->finish(c);
     // The servo is powered only while the run needs it: complete, aborted or failed, the
     // drive goes off and the brake output too. The power-down is not part of the record: its
     // samples entered the twin's calibration, which fits the whole log (dynamic runs on the
     // simulated bench: residual 0.81-1.07 arcsec with them, 0.62-0.77 without).
     bench.deactivate();
-    try {
-      writer->close();
-    } catch (const std::exception& e) {
-      c.abort_with(std::string("sample log: not closed cleanly: ") + e.what());
-    }
-    c.samples = writer->records_flushed();
-    c.results["acquisition"] = acquisition_json(bench.acquisition_stats(), *writer, log);
-    if (log.samples_dropped() > 0) {
-      c.results["warnings"].push_back(
-          "sample log: " + std::to_string(log.samples_dropped()) +
-          " samples dropped, its queue was full (the disk fell behind)");
-    }
+    for (auto& stage : stages) stage->close(c, bench);
   }
   c.results["timing"] = {
       {"recording_s",

@@ -1,6 +1,7 @@
 // The contract every integrator meets, checked against closed-form solutions.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <string>
@@ -228,14 +229,35 @@ TEST_P(IntegratorContract, StepsRespectMaxStepAndTMax) {
   EXPECT_LE(widest, max_step * (1 + 1e-9));
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    AllIntegrators, IntegratorContract,
-    ::testing::Values(
-        IntegratorCase{
-            "DormandPrince45", IntegratorKind::kDormandPrince45, {1e-10, 1e-12}, 0, 1e-7},
-        IntegratorCase{"Rk4", IntegratorKind::kRk4, {}, 1e-3, 1e-7},
-        IntegratorCase{"Rosenbrock4", IntegratorKind::kRosenbrock, {1e-9, 1e-11}, 0, 1e-7}),
-    case_name);
+// Every integrator of the registry, at settings derived from what it is: a new integrator is
+// covered by its one registry row. Adaptive methods at tolerances that put a method of order p
+// near 1e-8 on these O(1) problems; fixed-step methods at 1 ms.
+std::vector<IntegratorCase> registry_cases() {
+  std::vector<IntegratorCase> cases;
+  for (const auto& entry : integrator_registry()) {
+    const bool high_order = make_integrator(entry.kind, {}, 1e-3, 0)->order() >= 5;
+    const Tolerances tolerances = !entry.adaptive ? Tolerances{}
+                                  : high_order    ? Tolerances{1e-10, 1e-12}
+                                                  : Tolerances{1e-9, 1e-11};
+    cases.push_back(
+        {std::string(entry.name), entry.kind, tolerances, entry.adaptive ? 0.0 : 1e-3, 1e-7});
+  }
+  return cases;
+}
+
+INSTANTIATE_TEST_SUITE_P(AllIntegrators, IntegratorContract, ::testing::ValuesIn(registry_cases()),
+                         case_name);
+
+TEST(IntegratorRegistry, EachRowMakesTheIntegratorItNamesOnce) {
+  std::vector<std::string> names;
+  for (const auto& entry : integrator_registry()) {
+    const auto integrator = make_integrator(entry.kind, {}, 1e-3, 0);
+    EXPECT_EQ(integrator->name(), entry.name);
+    EXPECT_EQ(std::count(names.begin(), names.end(), integrator->name()), 0) << entry.name;
+    names.push_back(integrator->name());
+  }
+  EXPECT_EQ(names.size(), 3u);  // DormandPrince45, Rk4, Rosenbrock4
+}
 
 }  // namespace
 }  // namespace wavebench::model::solver

@@ -37,40 +37,21 @@ constexpr double kFacMin = 0.2, kFacMax = 10.0;
 
 }  // namespace
 
-DormandPrince45::DormandPrince45(const StepControl& control) : control_(control) {
-  validate(control_);
-}
+DormandPrince45::DormandPrince45(const StepControl& control) : AdaptiveIntegrator(control) {}
 
-void DormandPrince45::evaluate(double t, const double* y, double* dydt) {
-  system_->derivatives(t, {y, n_}, d_, {dydt, n_});
-  ++counters_.rhs_evaluations;
-}
-
-void DormandPrince45::initialize(const OdeSystem& system, double t0, std::span<const double> y0,
-                                 std::span<const double> d, double h0) {
-  system_ = &system;
-  d_ = d;
-  n_ = system.continuous_size();
-  if (y0.size() != n_) {
-    throw std::invalid_argument("DormandPrince45: initial state has " + std::to_string(y0.size()) +
-                                " values, the system " + std::to_string(n_));
-  }
+void DormandPrince45::DoInitialize(double h0) {
   for (auto* v : {&y_, &y_old_, &y_stage_, &y_new_, &error_scale_, &k1_, &k2_, &k3_, &k4_, &k5_,
                   &k6_, &k7_, &r1_, &r2_, &r3_, &r4_, &r5_}) {
     v->assign(n_, 0.0);
   }
-  system.error_scale(error_scale_);
+  system_->error_scale(error_scale_);
   validate_error_scale(error_scale_);
-  counters_ = {};
-  err_old_ = 1e-4;
+  err_old_ = 1e-4;  // PI controller memory (Hairer's facold)
   last_rejected_ = false;
   h_ = control_.fixed_step > 0 ? control_.fixed_step : h0;
-  reset(t0, y0);
 }
 
-void DormandPrince45::reset(double t, std::span<const double> y) {
-  t_ = t;
-  t_old_ = t;
+void DormandPrince45::DoReset(std::span<const double> y) {
   std::copy(y.begin(), y.end(), y_.begin());
   y_old_ = y_;
   evaluate(t_, y_.data(), k1_.data());
@@ -90,20 +71,15 @@ void DormandPrince45::reset(double t, std::span<const double> y) {
   last_rejected_ = false;
 }
 
-double DormandPrince45::step(double t_max) {
-  if (!(t_max > t_)) return t_;
-  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
-    // A rounding-sized remainder (e.g. an event just before t_max): no step can resolve it
-    // and the state cannot change by more than rounding, so land on t_max in place.
-    t_old_ = t_;
-    t_ = t_max;
-    y_old_ = y_;
-    k7_ = k1_;
-    r1_ = y_;
-    for (std::size_t i = 0; i < n_; ++i) r2_[i] = r3_[i] = r4_[i] = r5_[i] = 0;
-    dense_ready_ = true;
-    return t_;
-  }
+void DormandPrince45::DoLandInPlace() {
+  y_old_ = y_;
+  k7_ = k1_;
+  r1_ = y_;
+  for (std::size_t i = 0; i < n_; ++i) r2_[i] = r3_[i] = r4_[i] = r5_[i] = 0;
+  dense_ready_ = true;
+}
+
+double DormandPrince45::DoStep(double t_max) {
   const double atol = control_.tolerances.atol;
   const double rtol = control_.tolerances.rtol;
   const bool fixed = control_.fixed_step > 0;
@@ -213,7 +189,7 @@ void DormandPrince45::prepare_dense_output() const {
   dense_ready_ = true;
 }
 
-void DormandPrince45::dense_output(double t, std::span<double> y) const {
+void DormandPrince45::DoDenseOutput(double t, std::span<double> y) const {
   if (!dense_ready_) prepare_dense_output();
   const double h = t_ - t_old_;
   const double s = h > 0 ? (t - t_old_) / h : 1.0;

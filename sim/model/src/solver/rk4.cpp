@@ -7,51 +7,31 @@
 
 namespace wavebench::model::solver {
 
-Rk4::Rk4(double step) : h_(step) {
+Rk4::Rk4(double step) {
+  h_ = step;
   if (!(std::isfinite(step) && step > 0)) {
     throw std::invalid_argument("solver option fixed_step = " + std::to_string(step) +
                                 ": expected a finite step > 0 [s] for Rk4");
   }
 }
 
-void Rk4::evaluate(double t, const double* y, double* dydt) {
-  system_->derivatives(t, {y, n_}, d_, {dydt, n_});
-  ++counters_.rhs_evaluations;
-}
-
-void Rk4::initialize(const OdeSystem& system, double t0, std::span<const double> y0,
-                     std::span<const double> d, double /*h0*/) {
-  system_ = &system;
-  d_ = d;
-  n_ = system.continuous_size();
-  if (y0.size() != n_) {
-    throw std::invalid_argument("Rk4: initial state has " + std::to_string(y0.size()) +
-                                " values, the system " + std::to_string(n_));
-  }
+void Rk4::DoInitialize(double /*h0*/) {
   for (auto* v : {&y_, &y_old_, &f_, &f_old_, &k2_, &k3_, &k4_, &y_stage_}) v->assign(n_, 0.0);
-  counters_ = {};
-  reset(t0, y0);
 }
 
-void Rk4::reset(double t, std::span<const double> y) {
-  t_ = t;
-  t_old_ = t;
+void Rk4::DoReset(std::span<const double> y) {
   std::copy(y.begin(), y.end(), y_.begin());
   y_old_ = y_;
   evaluate(t_, y_.data(), f_.data());
   f_old_ = f_;
 }
 
-double Rk4::step(double t_max) {
-  if (!(t_max > t_)) return t_;
-  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
-    // A rounding-sized remainder: land on t_max in place (see DormandPrince45::step).
-    t_old_ = t_;
-    t_ = t_max;
-    y_old_ = y_;
-    f_old_ = f_;
-    return t_;
-  }
+void Rk4::DoLandInPlace() {
+  y_old_ = y_;
+  f_old_ = f_;
+}
+
+double Rk4::DoStep(double t_max) {
   const std::size_t n = n_;
   double h = h_;
   bool truncated = false;
@@ -87,7 +67,7 @@ double Rk4::step(double t_max) {
   return t_;
 }
 
-void Rk4::dense_output(double t, std::span<double> y) const {
+void Rk4::DoDenseOutput(double t, std::span<double> y) const {
   const double h = t_ - t_old_;
   if (!(h > 0)) {
     std::copy(y_.begin(), y_.end(), y.begin());

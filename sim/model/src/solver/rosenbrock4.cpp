@@ -45,24 +45,9 @@ constexpr double kSafe = 0.9, kFacMax = 5.0, kFacMin = 1.0 / 6.0;
 
 }  // namespace
 
-Rosenbrock4::Rosenbrock4(const StepControl& control) : control_(control) {
-  validate(control_);
-}
+Rosenbrock4::Rosenbrock4(const StepControl& control) : AdaptiveIntegrator(control) {}
 
-void Rosenbrock4::evaluate(double t, const double* y, double* dydt) {
-  system_->derivatives(t, {y, n_}, d_, {dydt, n_});
-  ++counters_.rhs_evaluations;
-}
-
-void Rosenbrock4::initialize(const OdeSystem& system, double t0, std::span<const double> y0,
-                             std::span<const double> d, double h0) {
-  system_ = &system;
-  d_ = d;
-  n_ = system.continuous_size();
-  if (y0.size() != n_) {
-    throw std::invalid_argument("Rosenbrock4: initial state has " + std::to_string(y0.size()) +
-                                " values, the system " + std::to_string(n_));
-  }
+void Rosenbrock4::DoInitialize(double h0) {
   const auto n = static_cast<Eigen::Index>(n_);
   for (auto* v : {&y_, &y_old_, &y_new_, &y_stage_, &f0_, &f_stage_, &dfdt_, &err_, &error_scale_,
                   &g1_, &g2_, &g3_, &g4_, &g5_, &cont3_, &cont4_}) {
@@ -71,17 +56,13 @@ void Rosenbrock4::initialize(const OdeSystem& system, double t0, std::span<const
   jac_.setZero(n, n);
   iteration_matrix_.setZero(n, n);
   lu_ = Eigen::PartialPivLU<Eigen::MatrixXd>(n);
-  system.error_scale({error_scale_.data(), n_});
+  system_->error_scale({error_scale_.data(), n_});
   validate_error_scale({error_scale_.data(), n_});
-  counters_ = {};
   first_step_ = true;
   h_ = control_.fixed_step > 0 ? control_.fixed_step : h0;
-  reset(t0, y0);
 }
 
-void Rosenbrock4::reset(double t, std::span<const double> y) {
-  t_ = t;
-  t_old_ = t;
+void Rosenbrock4::DoReset(std::span<const double> y) {
   for (std::size_t i = 0; i < n_; ++i) y_[static_cast<Eigen::Index>(i)] = y[i];
   y_old_ = y_;
   cont3_.setZero();
@@ -171,17 +152,13 @@ void Rosenbrock4::attempt(double h) {
   y_new_ = y_stage_ + err_;
 }
 
-double Rosenbrock4::step(double t_max) {
-  if (!(t_max > t_)) return t_;
-  if (t_max - t_ <= 16 * std::numeric_limits<double>::epsilon() * std::fabs(t_max)) {
-    // A rounding-sized remainder: land on t_max in place (see DormandPrince45::step).
-    t_old_ = t_;
-    t_ = t_max;
-    y_old_ = y_;
-    cont3_.setZero();
-    cont4_.setZero();
-    return t_;
-  }
+void Rosenbrock4::DoLandInPlace() {
+  y_old_ = y_;
+  cont3_.setZero();
+  cont4_.setZero();
+}
+
+double Rosenbrock4::DoStep(double t_max) {
   const bool fixed = control_.fixed_step > 0;
   const double atol = control_.tolerances.atol;
   const double rtol = control_.tolerances.rtol;
@@ -242,7 +219,7 @@ double Rosenbrock4::step(double t_max) {
   }
 }
 
-void Rosenbrock4::dense_output(double t, std::span<double> y) const {
+void Rosenbrock4::DoDenseOutput(double t, std::span<double> y) const {
   const double h = t_ - t_old_;
   const double s = h > 0 ? (t - t_old_) / h : 1.0;
   const double s1 = 1.0 - s;

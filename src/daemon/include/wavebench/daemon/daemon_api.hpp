@@ -40,13 +40,15 @@
 // A change needs `Authorization: Bearer <token>` (the CLI; acts as an engineer) or, from a
 // browser, a live session cookie together with the X-Wavebench-Request header
 // (browser_request.hpp); an Origin, when sent, must be this daemon's own. No CORS header is
-// ever sent; OPTIONS is 405. A session's role (accounts.hpp) limits what it may change: an
-// operator starts runs without options.limits (the specs folder's limits only) and cannot reset.
-// Errors are {"error": short text, "detail": what exactly}; bad input is 400 naming the key.
-// A request whose Host is not this daemon's (host_check.hpp) gets 421 before anything else.
-// Reads that cost in proportion to the data (sample pages, run details) run on
-// kMaxConcurrentReads low-priority threads (low_priority_reads.hpp); when all are busy the
-// others get 503 at once with Retry-After, so status, abort and stop are always answered.
+// ever sent; OPTIONS is 405. The routes above are one table (routes(), api_route.hpp): a path
+// it does not know is 404, a method the path lacks 405 with Allow naming the path's methods. A
+// session's role (accounts.hpp) limits what it may change: an operator starts runs without
+// options.limits (the specs folder's limits only) and cannot reset. Errors are {"error": short
+// text, "detail": what exactly}; bad input is 400 naming the key. A request whose Host is not this
+// daemon's (host_check.hpp) gets 421 before anything else. Reads that cost in proportion to the
+// data (sample pages, run details) run on kMaxConcurrentReads low-priority threads
+// (low_priority_reads.hpp); when all are busy the others get 503 at once with Retry-After, so
+// status, abort and stop are always answered.
 
 #include <chrono>
 #include <filesystem>
@@ -54,11 +56,13 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "wavebench/daemon/accounts.hpp"
+#include "wavebench/daemon/api_route.hpp"
 #include "wavebench/daemon/bench_thread.hpp"
 #include "wavebench/daemon/body_chunks.hpp"
 #include "wavebench/daemon/event_stream.hpp"
@@ -148,9 +152,15 @@ class DaemonApi {
   void set_results_status(std::function<nlohmann::json()> results_status) {
     results_status_ = std::move(results_status);
   }
+  // Every /api route: method, pattern, auth, cost, handler (route() dispatches on it; the tests
+  // walk it).
+  static std::span<const ApiRoute> routes();
 
  private:
   ApiResponse route(const ApiRequest& request) const;
+  // Why `auth` refuses this request; nothing when it may go ahead, and then `caller` says who.
+  std::optional<ApiResponse> refuse(RouteAuth auth, const ApiRequest& request,
+                                    SessionIdentity& caller) const;
   ApiResponse costly(const std::function<ApiResponse()>& read) const;
   ApiResponse status() const;
   ApiResponse start_run(const ApiRequest& request, const SessionIdentity& caller) const;

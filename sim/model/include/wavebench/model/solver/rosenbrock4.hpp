@@ -11,52 +11,38 @@
 #include <Eigen/Dense>
 #include <vector>
 
-#include "wavebench/model/solver/integrator.hpp"
-#include "wavebench/model/solver/step_control.hpp"
+#include "wavebench/model/solver/integrator_base.hpp"
 
 namespace wavebench::model::solver {
 
-class Rosenbrock4 final : public Integrator {
+class Rosenbrock4 final : public AdaptiveIntegrator {
  public:
   explicit Rosenbrock4(const StepControl& control);
 
   std::string name() const override { return "Rosenbrock4"; }
   int order() const override { return 4; }
 
-  void initialize(const OdeSystem& system, double t0, std::span<const double> y0,
-                  std::span<const double> d, double h0) override;
-  double step(double t_max) override;
-  void dense_output(double t, std::span<double> y) const override;
-
-  double current_time() const override { return t_; }
-  double previous_time() const override { return t_old_; }
   std::span<const double> current_state() const override {
     return {y_.data(), static_cast<std::size_t>(y_.size())};
   }
-  void reset(double t, std::span<const double> y) override;
-  const IntegratorCounters& counters() const override { return counters_; }
-
-  double proposed_step() const { return h_; }
 
  private:
-  void evaluate(double t, const double* y, double* dydt);
+  void DoInitialize(double h0) override;
+  void DoReset(std::span<const double> y) override;
+  double DoStep(double t_max) override;
+  void DoLandInPlace() override;
+  void DoDenseOutput(double t, std::span<double> y) const override;
   // df/dy and df/dt at (t_, y_) into jac_ and dfdt_ (analytic if the system has one).
   void evaluate_jacobian();
   // One trial step of size h from (t_, y_) into y_new_, error estimate into err_.
   void attempt(double h);
 
-  StepControl control_;
-  const OdeSystem* system_ = nullptr;
-  std::span<const double> d_;
-  std::size_t n_ = 0;
-  double t_ = 0, t_old_ = 0, h_ = 0, h_last_ = 0;
-  double err_old_ = 0, h_accepted_old_ = 0;
-  bool first_step_ = true, last_rejected_ = false, jacobian_current_ = false;
+  double h_accepted_old_ = 0;
+  bool first_step_ = true, jacobian_current_ = false;
   Eigen::VectorXd y_, y_old_, y_new_, y_stage_, f0_, f_stage_, dfdt_, err_, error_scale_;
   Eigen::VectorXd g1_, g2_, g3_, g4_, g5_, cont3_, cont4_;
   Eigen::MatrixXd jac_, iteration_matrix_;
   Eigen::PartialPivLU<Eigen::MatrixXd> lu_;
-  IntegratorCounters counters_;
 };
 
 }  // namespace wavebench::model::solver
