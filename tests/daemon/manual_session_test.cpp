@@ -206,6 +206,10 @@ using ManualApiTest = DaemonFixture;
 TEST_F(ManualApiTest, ARunIsRefusedWhileTheServoIsOnAndTheStopEndsIt) {
   EXPECT_EQ(client().get("/api/status").body["servo"], "servo off");
   ASSERT_EQ(client().post("/api/manual/servo", {{"on", true}}).status, 200);
+  // The servo is switched on by the bench thread: the stop below must meet it on (a stop that
+  // comes while it is still being switched on only cancels the wish, and leaves no last stop).
+  ASSERT_TRUE(
+      eventually([&] { return client().get("/api/status").body["manual"]["servo_on"] == true; }));
   const auto run = client().post("/api/runs", {{"procedure", "static"}});
   EXPECT_EQ(run.status, 409) << run.body.dump();
   EXPECT_NE(run.body.value("detail", "").find("manual panel"), std::string::npos)
