@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "wavebench/bench/bench_devices.hpp"
+#include "wavebench/can/event_loop.hpp"
 #include "wavebench/canopen/nmt.hpp"
 #include "wavebench/canopen/pdo.hpp"
 #include "wavebench/canopen/sdo_abort.hpp"
@@ -369,8 +370,7 @@ void CanopenBench::nodes_to_preoperational() noexcept {
   }
   // A bus that delivers from the event loop (the in-process one) sends it on the next turn.
   try {
-    if (io_.stopped()) io_.restart();
-    io_.poll();
+    can::run_ready(io_);
   } catch (const std::exception&) {
   }
 }
@@ -637,8 +637,7 @@ void CanopenBench::power_down_drive(canopen::Cia402State target) noexcept {
 // --- blocking calls -------------------------------------------------------------------------
 
 void CanopenBench::run_once() {
-  if (io_.stopped()) io_.restart();
-  io_.run_one_for(std::chrono::milliseconds(20));
+  can::run_next_within(io_, std::chrono::milliseconds(20));
 }
 
 void CanopenBench::throw_if_tripped() {
