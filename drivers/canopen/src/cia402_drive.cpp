@@ -2,6 +2,10 @@
 
 #include <fmt/format.h>
 
+#include <memory>
+
+#include "wavebench/can/event_loop.hpp"
+
 namespace wavebench::canopen {
 
 namespace {
@@ -106,19 +110,13 @@ void Cia402Drive::throw_if(const std::error_code& ec) const {
   throw SdoError(ec, sdo_.node(), kControlword, 0);
 }
 
-void Cia402Drive::sleep(std::chrono::milliseconds d) noexcept {
-  bool done = false;
+void Cia402Drive::sleep(std::chrono::milliseconds d) {
+  // The flag is shared with the timer's handler: another handler's exception may leave this wait
+  // (unchanged, to our caller) before the timer fires.
+  auto done = std::make_shared<bool>(false);
   timer_.expires_after(d);
-  timer_.async_wait([&done](const boost::system::error_code&) { done = true; });
-  auto& io = sdo_.bus().context();
-  try {
-    while (!done) {
-      if (io.stopped()) io.restart();
-      io.run_one();
-    }
-  } catch (...) {
-    timer_.cancel();
-  }
+  timer_.async_wait([done](const boost::system::error_code&) { *done = true; });
+  can::run_until(sdo_.bus().context(), [&done] { return *done; });
 }
 
 void Cia402Drive::fail(Cia402Errc errc, std::uint16_t sw, const std::string& what,
@@ -137,78 +135,78 @@ void Cia402Drive::fail(Cia402Errc errc, std::uint16_t sw, const std::string& wha
   ec = errc;
 }
 
-std::uint16_t Cia402Drive::statusword(std::error_code& ec) noexcept {
+std::uint16_t Cia402Drive::statusword(std::error_code& ec) {
   return sdo_.read<std::uint16_t>(kStatusword, 0, ec);
 }
 
-Cia402State Cia402Drive::state(std::error_code& ec) noexcept {
+Cia402State Cia402Drive::state(std::error_code& ec) {
   const auto sw = statusword(ec);
   return ec ? Cia402State::unknown : decode_state(sw);
 }
 
-void Cia402Drive::write_controlword(std::uint16_t cw, std::error_code& ec) noexcept {
+void Cia402Drive::write_controlword(std::uint16_t cw, std::error_code& ec) {
   sdo_.write<std::uint16_t>(kControlword, 0, cw, ec);
   if (!ec) controlword_ = cw;
 }
 
-void Cia402Drive::go_to(Cia402State target, std::error_code& ec) noexcept {
+void Cia402Drive::go_to(Cia402State target, std::error_code& ec) {
   ec.clear();
   failure_ = {};
   const auto deadline = std::chrono::steady_clock::now() + options_.state_timeout;
   int resets = 0;
   std::uint16_t sw = 0;
-  std::optional<Cia402State> commanded_from;
-  try {
-    for (;;) {
-      sw = statusword(ec);
-      if (ec) return;
-      const auto current = decode_state(sw);
-      if (current == target) return;
-      if (std::chrono::steady_clock::now() > deadline) {
-        return fail(Cia402Errc::cannot_reach_state, sw,
-                    fmt::format("cannot reach {}", to_string(target)), ec);
-      }
-      if (current == Cia402State::fault) {
-        if (resets >= options_.max_fault_resets) {
-          return fail(Cia402Errc::fault, sw, fmt::format("fault persists after {} resets", resets),
-                      ec);
-        }
-        // Fault reset acts on the rising edge of bit 7: bit 7 low first, then high.
-        write_controlword(controlword::disable_voltage, ec);
-        if (ec) return;
-        write_controlword(controlword::fault_reset, ec);
-        if (ec) return;
-        ++resets;
-        commanded_from = current;
-        // Give the drive time to leave fault before another edge.
-        const auto settle = std::chrono::steady_clock::now() +
-                            options_.state_timeout / (options_.max_fault_resets + 1);
-        do {
-          sleep(options_.poll_interval);
-          sw = statusword(ec);
-          if (ec) return;
-        } while (decode_state(sw) == Cia402State::fault &&
-                 std::chrono::steady_clock::now() < settle);
-        continue;
-      }
-      const auto cw = controlword_toward(current, target);
-      if (cw && commanded_from != current) {
-        // Keep the operation-mode bits (4-6, 8) of the last controlword; the command bits
-        // select the transition.
-        const auto mode_bits = static_cast<std::uint16_t>(controlword_ & 0x0170U);
-        write_controlword(static_cast<std::uint16_t>(
-                              *cw | (*cw == controlword::enable_operation ? mode_bits : 0U)),
-                          ec);
-        if (ec) return;
-        commanded_from = current;
-        continue;
-      }
-      sleep(options_.poll_interval);
-      // Re-command after a poll with no progress: some drives ignore a write while busy.
-      if (cw) commanded_from.reset();
+  // The state last commanded from, if any (a flag and a value: GCC 12 misreads an optional<enum>
+  // in this loop as maybe-uninitialized once exceptions may leave it).
+  bool commanded = false;
+  Cia402State commanded_from = Cia402State::not_ready_to_switch_on;
+  for (;;) {
+    sw = statusword(ec);
+    if (ec) return;
+    const auto current = decode_state(sw);
+    if (current == target) return;
+    if (std::chrono::steady_clock::now() > deadline) {
+      return fail(Cia402Errc::cannot_reach_state, sw,
+                  fmt::format("cannot reach {}", to_string(target)), ec);
     }
-  } catch (...) {
-    ec = make_error_code(SdoAbort::general);
+    if (current == Cia402State::fault) {
+      if (resets >= options_.max_fault_resets) {
+        return fail(Cia402Errc::fault, sw, fmt::format("fault persists after {} resets", resets),
+                    ec);
+      }
+      // Fault reset acts on the rising edge of bit 7: bit 7 low first, then high.
+      write_controlword(controlword::disable_voltage, ec);
+      if (ec) return;
+      write_controlword(controlword::fault_reset, ec);
+      if (ec) return;
+      ++resets;
+      commanded = true;
+      commanded_from = current;
+      // Give the drive time to leave fault before another edge.
+      const auto settle = std::chrono::steady_clock::now() +
+                          options_.state_timeout / (options_.max_fault_resets + 1);
+      do {
+        sleep(options_.poll_interval);
+        sw = statusword(ec);
+        if (ec) return;
+      } while (decode_state(sw) == Cia402State::fault && std::chrono::steady_clock::now() < settle);
+      continue;
+    }
+    const auto cw = controlword_toward(current, target);
+    if (cw && (!commanded || commanded_from != current)) {
+      // Keep the operation-mode bits (4-6, 8) of the last controlword; the command bits
+      // select the transition.
+      const auto mode_bits = static_cast<std::uint16_t>(controlword_ & 0x0170U);
+      write_controlword(
+          static_cast<std::uint16_t>(*cw | (*cw == controlword::enable_operation ? mode_bits : 0U)),
+          ec);
+      if (ec) return;
+      commanded = true;
+      commanded_from = current;
+      continue;
+    }
+    sleep(options_.poll_interval);
+    // Re-command after a poll with no progress: some drives ignore a write while busy.
+    if (cw) commanded = false;
   }
 }
 
@@ -218,7 +216,7 @@ void Cia402Drive::go_to(Cia402State target) {
   throw_if(ec);
 }
 
-void Cia402Drive::quick_stop(std::error_code& ec) noexcept {
+void Cia402Drive::quick_stop(std::error_code& ec) {
   ec.clear();
   auto sw = statusword(ec);
   if (ec) return;
@@ -248,7 +246,7 @@ void Cia402Drive::quick_stop() {
   throw_if(ec);
 }
 
-void Cia402Drive::fault_reset(std::error_code& ec) noexcept {
+void Cia402Drive::fault_reset(std::error_code& ec) {
   ec.clear();
   auto sw = statusword(ec);
   if (ec || decode_state(sw) != Cia402State::fault) return;
@@ -273,7 +271,7 @@ void Cia402Drive::fault_reset() {
   throw_if(ec);
 }
 
-void Cia402Drive::set_mode(OperationMode mode, std::error_code& ec) noexcept {
+void Cia402Drive::set_mode(OperationMode mode, std::error_code& ec) {
   ec.clear();
   sdo_.write<std::int8_t>(kModes, 0, static_cast<std::int8_t>(mode), ec);
   if (ec) return;
@@ -301,7 +299,7 @@ void Cia402Drive::set_mode(OperationMode mode) {
   throw_if(ec);
 }
 
-void Cia402Drive::move(const ProfileMove& m, std::error_code& ec) noexcept {
+void Cia402Drive::move(const ProfileMove& m, std::error_code& ec) {
   ec.clear();
   auto sw = statusword(ec);
   if (ec) return;
@@ -344,8 +342,7 @@ void Cia402Drive::move(const ProfileMove& m) {
   throw_if(ec);
 }
 
-void Cia402Drive::wait_target_reached(std::chrono::milliseconds timeout,
-                                      std::error_code& ec) noexcept {
+void Cia402Drive::wait_target_reached(std::chrono::milliseconds timeout, std::error_code& ec) {
   ec.clear();
   const auto deadline = std::chrono::steady_clock::now() + timeout;
   for (;;) {
@@ -379,7 +376,7 @@ void Cia402Drive::wait_target_reached(std::chrono::milliseconds timeout) {
   throw_if(ec);
 }
 
-void Cia402Drive::set_target_velocity(std::int32_t velocity, std::error_code& ec) noexcept {
+void Cia402Drive::set_target_velocity(std::int32_t velocity, std::error_code& ec) {
   sdo_.write<std::int32_t>(kTargetVelocity, 0, velocity, ec);
 }
 
@@ -387,7 +384,7 @@ void Cia402Drive::set_target_velocity(std::int32_t velocity) {
   sdo_.write<std::int32_t>(kTargetVelocity, 0, velocity);
 }
 
-void Cia402Drive::set_target_position(std::int32_t position, std::error_code& ec) noexcept {
+void Cia402Drive::set_target_position(std::int32_t position, std::error_code& ec) {
   sdo_.write<std::int32_t>(kTargetPosition, 0, position, ec);
 }
 
@@ -395,11 +392,11 @@ void Cia402Drive::set_target_position(std::int32_t position) {
   sdo_.write<std::int32_t>(kTargetPosition, 0, position);
 }
 
-std::int32_t Cia402Drive::following_error(std::error_code& ec) noexcept {
+std::int32_t Cia402Drive::following_error(std::error_code& ec) {
   return sdo_.read<std::int32_t>(kFollowingError, 0, ec);
 }
 
-std::uint16_t Cia402Drive::error_code(std::error_code& ec) noexcept {
+std::uint16_t Cia402Drive::error_code(std::error_code& ec) {
   return sdo_.read<std::uint16_t>(kErrorCode, 0, ec);
 }
 

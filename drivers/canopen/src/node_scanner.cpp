@@ -5,6 +5,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "wavebench/can/event_loop.hpp"
 #include "wavebench/canopen/sdo_client.hpp"
 
 namespace wavebench::canopen {
@@ -63,11 +64,7 @@ std::vector<ScannedNode> scan_nodes(can::CanBus& bus, const ScanOptions& options
     });
     clients.push_back(std::move(client));
   }
-  auto& io = bus.context();
-  while (pending > 0) {
-    if (io.stopped()) io.restart();
-    if (io.run_one() == 0) break;
-  }
+  can::run_until(bus.context(), [&pending] { return pending == 0; });
   std::vector<ScannedNode> out;
   for (auto& [id, n] : found) out.push_back(n);
   return out;

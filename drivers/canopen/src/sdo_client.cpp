@@ -1,6 +1,10 @@
 #include "wavebench/canopen/sdo_client.hpp"
 
 #include <algorithm>
+#include <boost/asio/post.hpp>
+#include <exception>
+
+#include "wavebench/can/event_loop.hpp"
 
 namespace wavebench::canopen {
 
@@ -60,7 +64,7 @@ SdoClient::~SdoClient() {
   timer_.cancel();
 }
 
-void SdoClient::async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler) {
+void SdoClient::queue_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler) {
   Request r;
   r.upload = true;
   r.block = block_upload_;
@@ -71,7 +75,7 @@ void SdoClient::async_upload(std::uint16_t index, std::uint8_t sub, UploadHandle
   if (!active_) start_next();
 }
 
-void SdoClient::async_download(std::uint16_t index, std::uint8_t sub,
+void SdoClient::queue_download(std::uint16_t index, std::uint8_t sub,
                                std::vector<std::uint8_t> data, DownloadHandler handler) {
   Request r;
   r.upload = false;
@@ -177,10 +181,17 @@ void SdoClient::finish(std::error_code ec) noexcept {
   std::vector<std::uint8_t> data = std::move(received_);
   received_.clear();
   if (ec) data.clear();
-  if (done.upload) {
-    if (done.on_upload) done.on_upload(ec, std::move(data));
-  } else {
-    if (done.on_download) done.on_download(ec);
+  try {
+    if (done.upload) {
+      if (done.on_upload) done.on_upload(ec, std::move(data));
+    } else {
+      if (done.on_download) done.on_download(ec);
+    }
+  } catch (...) {
+    // The handler's failure is not this transfer's: it leaves the event loop as thrown and
+    // reaches whoever waits there, while the queue goes on.
+    boost::asio::post(bus_.context(),
+                      [failure = std::current_exception()] { std::rethrow_exception(failure); });
   }
   start_next();
 }
@@ -347,39 +358,33 @@ void SdoClient::send_download_segment() noexcept {
   send_frame(f);
 }
 
-template <typename Result, typename Call>
-Result SdoClient::wait_for(Call&& start, std::error_code& ec) noexcept {
-  bool done = false;
-  Result result{};
-  try {
-    start(done, result, ec);
-    auto& io = bus_.context();
-    int idle = 0;
-    while (!done) {
-      if (io.stopped()) io.restart();
-      if (io.run_one() == 0 && ++idle > 2) {
-        ec = make_error_code(SdoAbort::general);
-        return Result{};
-      }
-    }
-  } catch (...) {
+namespace {
+
+// Waits in the one event loop for a transfer started by `start`, which sets `done` on completion.
+// The loop running dry means no answer and no timeout can come any more (the io_context was
+// stopped under us): that is the only failure made up here.
+void wait_in_loop(can::CanBus& bus, const bool& done, std::error_code& ec) {
+  if (!can::run_until(bus.context(), [&done] { return done; })) {
     ec = make_error_code(SdoAbort::general);
   }
-  return result;
 }
 
+}  // namespace
+
 std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t sub,
-                                            std::error_code& ec) noexcept {
+                                            std::error_code& ec) {
   ec.clear();
-  return wait_for<std::vector<std::uint8_t>>(
-      [&](bool& done, std::vector<std::uint8_t>& result, std::error_code& out) {
-        async_upload(index, sub, [&](std::error_code e, std::vector<std::uint8_t> data) {
-          out = e;
-          result = std::move(data);
-          done = true;
-        });
-      },
-      ec);
+  auto done = std::make_shared<bool>(false);
+  auto result = std::make_shared<std::pair<std::error_code, std::vector<std::uint8_t>>>();
+  // The handler holds its own state: a handler exception may leave this frame before it runs.
+  queue_upload(index, sub, [done, result](std::error_code e, std::vector<std::uint8_t> data) {
+    *result = {e, std::move(data)};
+    *done = true;
+  });
+  wait_in_loop(bus_, *done, ec);
+  if (ec) return {};
+  ec = result->first;
+  return std::move(result->second);
 }
 
 std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t sub) {
@@ -390,17 +395,17 @@ std::vector<std::uint8_t> SdoClient::upload(std::uint16_t index, std::uint8_t su
 }
 
 void SdoClient::download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data,
-                         std::error_code& ec) noexcept {
+                         std::error_code& ec) {
   ec.clear();
-  wait_for<int>(
-      [&](bool& done, int&, std::error_code& out) {
-        async_download(index, sub, std::vector<std::uint8_t>(data.begin(), data.end()),
-                       [&](std::error_code e) {
-                         out = e;
-                         done = true;
-                       });
-      },
-      ec);
+  auto done = std::make_shared<bool>(false);
+  auto result = std::make_shared<std::error_code>();
+  queue_download(index, sub, std::vector<std::uint8_t>(data.begin(), data.end()),
+                 [done, result](std::error_code e) {
+                   *result = e;
+                   *done = true;
+                 });
+  wait_in_loop(bus_, *done, ec);
+  if (!ec) ec = *result;
 }
 
 void SdoClient::download(std::uint16_t index, std::uint8_t sub,

@@ -6,6 +6,7 @@
 #include <cmath>
 
 #include "wavebench/bench/bench_devices.hpp"
+#include "wavebench/can/event_loop.hpp"
 #include "wavebench/canopen/nmt.hpp"
 #include "wavebench/canopen/pdo.hpp"
 #include "wavebench/canopen/sdo_abort.hpp"
@@ -369,8 +370,7 @@ void CanopenBench::nodes_to_preoperational() noexcept {
   }
   // A bus that delivers from the event loop (the in-process one) sends it on the next turn.
   try {
-    if (io_.stopped()) io_.restart();
-    io_.poll();
+    can::run_ready(io_);
   } catch (const std::exception&) {
   }
 }
@@ -491,7 +491,11 @@ void CanopenBench::finish_safe_state() noexcept {
   // The watch counts bench time, which stands still when the loop's cycles stall: this
   // real-time bound sends the NMT stop itself then.
   const auto deadline = Clock::now() + ms(config_.can.quick_stop_timeout_s + 0.5);
-  while (quick_stop_watch_.pending() && Clock::now() < deadline) run_once();
+  try {
+    while (quick_stop_watch_.pending() && Clock::now() < deadline) run_once();
+  } catch (const std::exception& e) {
+    spdlog::error("bench '{}': waiting for the quick stop: {}", config_.description.name, e.what());
+  }
   if (quick_stop_watch_.pending()) {
     stop_drive_by_nmt();
     quick_stop_watch_.reset();
@@ -612,15 +616,23 @@ void CanopenBench::power_down_drive(canopen::Cia402State target) noexcept {
   if (!drive_->configured()) return;
   auto& drive = drive_->drive();
   std::error_code ec;
-  const auto state = drive.state(ec);
-  if (!ec) {
-    if (state == canopen::Cia402State::fault || state == target ||
-        state == canopen::Cia402State::switch_on_disabled) {
-      powered_ = false;
-      return;
+  try {
+    const auto state = drive.state(ec);
+    if (!ec) {
+      if (state == canopen::Cia402State::fault || state == target ||
+          state == canopen::Cia402State::switch_on_disabled) {
+        powered_ = false;
+        return;
+      }
+      if (mode_ == canopen::OperationMode::profile_velocity) drive.set_target_velocity(0, ec);
+      drive.go_to(target, ec);
     }
-    if (mode_ == canopen::OperationMode::profile_velocity) drive.set_target_velocity(0, ec);
-    drive.go_to(target, ec);
+  } catch (const std::exception& e) {
+    // A handler's exception met while waiting: a fault path cannot pass it on, so it is told
+    // as thrown.
+    spdlog::error("bench '{}': {} not powered down to {}: {}", config_.description.name,
+                  drive_->describe(), canopen::to_string(target), e.what());
+    return;
   }
   if (ec) {
     spdlog::error(
@@ -637,8 +649,7 @@ void CanopenBench::power_down_drive(canopen::Cia402State target) noexcept {
 // --- blocking calls -------------------------------------------------------------------------
 
 void CanopenBench::run_once() {
-  if (io_.stopped()) io_.restart();
-  io_.run_one_for(std::chrono::milliseconds(20));
+  can::run_next_within(io_, std::chrono::milliseconds(20));
 }
 
 void CanopenBench::throw_if_tripped() {

@@ -2,7 +2,7 @@
 // A CiA 402 drive driven by SDO: walks the state machine (fault reset on a rising edge of bit 7),
 // selects modes (PP with the new-set-point handshake, PV, CSV, CSP), and when it cannot reach a
 // state it says why: the state it is stuck in, the statusword, and the error code 0x603F.
-// Blocking calls run the bus's io_context (see SdoClient); each comes throwing (Cia402Error)
+// Blocking calls wait in the one event loop (see SdoClient); each comes throwing (Cia402Error)
 // and with std::error_code&, after which last_failure() holds the explanation.
 
 #include <boost/asio/steady_timer.hpp>
@@ -76,45 +76,45 @@ class Cia402Drive {
   SdoClient& sdo() noexcept { return sdo_; }
   const Cia402Failure& last_failure() const noexcept { return failure_; }
 
-  std::uint16_t statusword(std::error_code& ec) noexcept;
-  Cia402State state(std::error_code& ec) noexcept;
-  void write_controlword(std::uint16_t cw, std::error_code& ec) noexcept;
+  std::uint16_t statusword(std::error_code& ec);
+  Cia402State state(std::error_code& ec);
+  void write_controlword(std::uint16_t cw, std::error_code& ec);
   std::uint16_t last_controlword() const noexcept { return controlword_; }
 
   // Walks the state machine to `target`, resetting faults on the way.
   void go_to(Cia402State target);
-  void go_to(Cia402State target, std::error_code& ec) noexcept;
+  void go_to(Cia402State target, std::error_code& ec);
   void enable_operation() { go_to(Cia402State::operation_enabled); }
-  void enable_operation(std::error_code& ec) noexcept { go_to(Cia402State::operation_enabled, ec); }
-  void disable_voltage(std::error_code& ec) noexcept { go_to(Cia402State::switch_on_disabled, ec); }
+  void enable_operation(std::error_code& ec) { go_to(Cia402State::operation_enabled, ec); }
+  void disable_voltage(std::error_code& ec) { go_to(Cia402State::switch_on_disabled, ec); }
   // Transition 11: operation enabled -> quick stop active.
   void quick_stop();
-  void quick_stop(std::error_code& ec) noexcept;
+  void quick_stop(std::error_code& ec);
   // Transition 15 alone: a rising edge of bit 7, then wait to leave fault.
   void fault_reset();
-  void fault_reset(std::error_code& ec) noexcept;
+  void fault_reset(std::error_code& ec);
 
   void set_mode(OperationMode mode);
-  void set_mode(OperationMode mode, std::error_code& ec) noexcept;
+  void set_mode(OperationMode mode, std::error_code& ec);
 
   // PP: set-point, new-set-point bit, wait for the acknowledge (bit 12), release bit 4.
   void move(const ProfileMove& move);
-  void move(const ProfileMove& move, std::error_code& ec) noexcept;
+  void move(const ProfileMove& move, std::error_code& ec);
   // Waits for target reached (bit 10); following error (bit 13) or fault fail it.
   void wait_target_reached(std::chrono::milliseconds timeout);
-  void wait_target_reached(std::chrono::milliseconds timeout, std::error_code& ec) noexcept;
+  void wait_target_reached(std::chrono::milliseconds timeout, std::error_code& ec);
   // PV / CSV target velocity 0x60FF; CSP target position 0x607A (acyclic: by SDO).
   void set_target_velocity(std::int32_t velocity);
-  void set_target_velocity(std::int32_t velocity, std::error_code& ec) noexcept;
+  void set_target_velocity(std::int32_t velocity, std::error_code& ec);
   void set_target_position(std::int32_t position);
-  void set_target_position(std::int32_t position, std::error_code& ec) noexcept;
+  void set_target_position(std::int32_t position, std::error_code& ec);
   // Following error actual 0x60F4; a statusword bit 13 in PP/CSP is reported as an error.
-  std::int32_t following_error(std::error_code& ec) noexcept;
-  std::uint16_t error_code(std::error_code& ec) noexcept;  // 0x603F
+  std::int32_t following_error(std::error_code& ec);
+  std::uint16_t error_code(std::error_code& ec);  // 0x603F
 
  private:
   void fail(Cia402Errc errc, std::uint16_t sw, const std::string& what, std::error_code& ec);
-  void sleep(std::chrono::milliseconds d) noexcept;
+  void sleep(std::chrono::milliseconds d);
   void throw_if(const std::error_code& ec) const;
 
   SdoClient& sdo_;

@@ -29,7 +29,7 @@ struct ScanOptions {
   NodeId last = 127;
 };
 
-// Blocking: runs the bus's io_context until every node has answered or timed out.
+// Blocking: waits in the one event loop until every node has answered or timed out.
 std::vector<ScannedNode> scan_nodes(can::CanBus& bus, const ScanOptions& options = {});
 
 }  // namespace wavebench::canopen

@@ -1,16 +1,23 @@
 #pragma once
 // SDO client for one server node: expedited and segmented upload and download, CiA 301 §7.2.4.
-// Every call comes in three forms: asynchronous (completion handler on the bus's io_context),
-// throwing (SdoError), and std::error_code&. The blocking forms run the bus's io_context until the
-// transfer completes, so they must not be called from a handler running on that io_context.
+// Every call comes in three forms: asynchronous (any Boost.Asio completion token: a handler, or
+// boost::asio::use_awaitable so a coroutine suspends until the transfer completes), throwing
+// (SdoError), and std::error_code&. The blocking forms wait in the one event loop
+// (wavebench/can/event_loop.hpp) until the transfer completes, so they must not be called from a
+// handler running on that io_context; the acquisition path never calls them.
+// A completion handler that throws does not become a transfer error: its exception leaves the
+// event loop unchanged and reaches whoever waits there (the std::error_code& forms included: the
+// code reports the transfer, an exception is not the transfer's).
 // One transfer is on the wire at a time; further requests queue in order.
 
+#include <boost/asio/async_result.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <chrono>
 #include <cstdint>
 #include <cstring>
 #include <deque>
 #include <functional>
+#include <memory>
 #include <span>
 #include <string>
 #include <system_error>
@@ -47,16 +54,33 @@ class SdoClient {
     block_size_ = block_size == 0 || block_size > 127 ? std::uint8_t{127} : block_size;
   }
 
-  void async_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler);
-  void async_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
-                      DownloadHandler handler);
+  // Completes with (std::error_code, bytes); with use_awaitable `co_await` yields that pair.
+  template <typename CompletionToken>
+  auto async_upload(std::uint16_t index, std::uint8_t sub, CompletionToken&& token) {
+    return boost::asio::async_initiate<CompletionToken,
+                                       void(std::error_code, std::vector<std::uint8_t>)>(
+        [this, index, sub](auto handler) {
+          queue_upload(index, sub, copyable<UploadHandler>(std::move(handler)));
+        },
+        token);
+  }
+  // Completes with (std::error_code); with use_awaitable `co_await` yields the code.
+  template <typename CompletionToken>
+  auto async_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
+                      CompletionToken&& token) {
+    return boost::asio::async_initiate<CompletionToken, void(std::error_code)>(
+        [this, index, sub](auto handler, std::vector<std::uint8_t> bytes) {
+          queue_download(index, sub, std::move(bytes),
+                         copyable<DownloadHandler>(std::move(handler)));
+        },
+        token, std::move(data));
+  }
 
   std::vector<std::uint8_t> upload(std::uint16_t index, std::uint8_t sub);
-  std::vector<std::uint8_t> upload(std::uint16_t index, std::uint8_t sub,
-                                   std::error_code& ec) noexcept;
+  std::vector<std::uint8_t> upload(std::uint16_t index, std::uint8_t sub, std::error_code& ec);
   void download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data);
   void download(std::uint16_t index, std::uint8_t sub, std::span<const std::uint8_t> data,
-                std::error_code& ec) noexcept;
+                std::error_code& ec);
 
   // Typed access for arithmetic objects (little-endian, exact size checked on read).
   template <typename T>
@@ -67,7 +91,7 @@ class SdoClient {
     return v;
   }
   template <typename T>
-  T read(std::uint16_t index, std::uint8_t sub, std::error_code& ec) noexcept {
+  T read(std::uint16_t index, std::uint8_t sub, std::error_code& ec) {
     static_assert(std::is_arithmetic_v<T>);
     const auto bytes = upload(index, sub, ec);
     if (ec) return T{};
@@ -86,7 +110,7 @@ class SdoClient {
     if (ec) throw SdoError(ec, node_, index, sub);
   }
   template <typename T>
-  void write(std::uint16_t index, std::uint8_t sub, T value, std::error_code& ec) noexcept {
+  void write(std::uint16_t index, std::uint8_t sub, T value, std::error_code& ec) {
     static_assert(std::is_arithmetic_v<T>);
     std::uint8_t bytes[sizeof(T)];
     std::memcpy(bytes, &value, sizeof(T));
@@ -109,6 +133,16 @@ class SdoClient {
   };
   enum class Phase { initiate, segment, block_data, block_end };
 
+  // Handlers from completion tokens may be move-only (a coroutine's); the queue keeps
+  // std::function, so they are held by a shared pointer.
+  template <typename Function, typename Handler>
+  static Function copyable(Handler handler) {
+    auto held = std::make_shared<Handler>(std::move(handler));
+    return [held](auto&&... args) { (*held)(std::forward<decltype(args)>(args)...); };
+  }
+  void queue_upload(std::uint16_t index, std::uint8_t sub, UploadHandler handler);
+  void queue_download(std::uint16_t index, std::uint8_t sub, std::vector<std::uint8_t> data,
+                      DownloadHandler handler);
   void start_next() noexcept;
   void send_current() noexcept;
   void send_frame(const can::Frame& frame) noexcept;
@@ -121,8 +155,6 @@ class SdoClient {
   void handle_download(const can::Frame& frame) noexcept;
   void send_download_segment() noexcept;
   void fail_with_abort(SdoAbort code) noexcept;
-  template <typename Result, typename Call>
-  Result wait_for(Call&& start, std::error_code& ec) noexcept;
 
   can::CanBus& bus_;
   NodeId node_;
