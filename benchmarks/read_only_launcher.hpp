@@ -11,11 +11,11 @@ namespace wavebench::benchmarks {
 
 class ReadOnlyLauncher : public daemon::RunLauncher {
  public:
-  runs::RunOutcome launch(bench::Bench&, storage::RunStore&, const runs::RunRequest&,
-                          const runs::ProgressSink&) override {
+  procedures::RunOutcome launch(bench::Bench&, storage::RunStore&, const procedures::RunRequest&,
+                          const procedures::ProgressSink&) override {
     throw std::invalid_argument("benchmark: this daemon only reads, it runs nothing");
   }
-  void check(const runs::RunRequest&, const bench::BenchDescription&, std::size_t,
+  void check(const procedures::RunRequest&, const bench::BenchDescription&, std::size_t,
              const std::filesystem::path&) const override {}
 };
 

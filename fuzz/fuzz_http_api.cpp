@@ -18,7 +18,7 @@
 #include "wavebench/daemon/bench_thread.hpp"
 #include "wavebench/daemon/daemon_api.hpp"
 #include "wavebench/daemon/http_server.hpp"
-#include "wavebench/runs/run_request_check.hpp"
+#include "wavebench/procedures/run_request_check.hpp"
 
 namespace {
 
@@ -30,13 +30,13 @@ constexpr const char* kToken = "fuzz-token-0123456789abcdef";
 // Checks like the real launcher; launching is refused, so no input moves the stand-in bench.
 class CheckOnlyLauncher : public daemon::RunLauncher {
  public:
-  runs::RunOutcome launch(bench::Bench&, storage::RunStore&, const runs::RunRequest&,
-                          const runs::ProgressSink&) override {
+  procedures::RunOutcome launch(bench::Bench&, storage::RunStore&, const procedures::RunRequest&,
+                          const procedures::ProgressSink&) override {
     throw std::invalid_argument("fuzz: runs are checked, never launched");
   }
-  void check(const runs::RunRequest& request, const bench::BenchDescription& /*fake*/,
+  void check(const procedures::RunRequest& request, const bench::BenchDescription& /*fake*/,
              std::size_t extra_channels, const std::filesystem::path& runs_root) const override {
-    runs::check_run_request(request, simulated_, extra_channels, runs_root);
+    procedures::check_run_request(request, simulated_, extra_channels, runs_root);
   }
 
  private:

@@ -1,6 +1,6 @@
 // The acquisition under a stalling disk (issue #9): the in-process simulated bench on the real
 // clock at its configured SYNC rate, the input turning at 100 rpm under a brake load, every
-// sample going to a sample log through runs::SampleLogObserver as in a run, each round to a
+// sample going to a sample log through procedures::SampleLogObserver as in a run, each round to a
 // fresh log. Rounds with and without a 50 ms stall injected once a second into the log file's
 // write(2)/fdatasync(2) (disk_stall.hpp) alternate on one connected bench, in pairs ordered
 // plain-stalled, stalled-plain, ... so that whatever else loads the machine falls on both alike
@@ -39,7 +39,7 @@
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/bench/canopen_bench.hpp"
 #include "wavebench/bench/sync_lateness_histogram.hpp"
-#include "wavebench/runs/sample_log_observer.hpp"
+#include "wavebench/procedures/sample_log_observer.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace {
@@ -151,7 +151,7 @@ void StallRounds::run(std::size_t index, double seconds, bool stall, LogPath log
   {
     storage::SampleLogWriter writer(path);
     // One of the two: the writer belongs to one thread.
-    std::optional<runs::SampleLogObserver> log;
+    std::optional<procedures::SampleLogObserver> log;
     std::optional<SynchronousLogObserver> synchronous;
     if (log_path == LogPath::writer_thread) {
       log.emplace(writer, b);

@@ -107,11 +107,11 @@ int main(int argc, char** argv) {
   daemon::DaemonSetup setup;
   setup.bench_factory = [config] { return bench::make_bench(config); };
   struct NoRuns : daemon::RunLauncher {
-    runs::RunOutcome launch(bench::Bench&, storage::RunStore&, const runs::RunRequest&,
-                            const runs::ProgressSink&) override {
+    procedures::RunOutcome launch(bench::Bench&, storage::RunStore&, const procedures::RunRequest&,
+                            const procedures::ProgressSink&) override {
       throw std::invalid_argument("this benchmark starts no runs");
     }
-    void check(const runs::RunRequest&, const bench::BenchDescription&, std::size_t,
+    void check(const procedures::RunRequest&, const bench::BenchDescription&, std::size_t,
                const fs::path&) const override {}
   };
   setup.launcher = std::make_unique<NoRuns>();

@@ -8,8 +8,8 @@
 #include <numbers>
 #include <string>
 
-#include "wavebench/procedures/dynamic_te_analysis.hpp"
-#include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/metrology/dynamic_te_analysis.hpp"
+#include "wavebench/metrology/lost_motion_fit.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace {
@@ -37,17 +37,17 @@ void BM_SampleLogAppend(benchmark::State& state) {
 BENCHMARK(BM_SampleLogAppend);
 
 void BM_LostMotionFit(benchmark::State& state) {
-  procedures::ThreeSegmentStiffness curve{6.7e4, 1.1e5, 1.2e5, 29, 108, 0};
-  std::vector<procedures::TorqueTwistPoint> rec;
+  metrology::ThreeSegmentStiffness curve{6.7e4, 1.1e5, 1.2e5, 29, 108, 0};
+  std::vector<metrology::TorqueTwistPoint> rec;
   for (int travel : {1, -1}) {
     for (int k = 1; k <= 30; ++k) {
       const double t = travel * 5.0 * k;
       rec.push_back({t, travel * 1e-4 + curve.twist_at(t), travel});
     }
   }
-  procedures::LostMotionOptions options;
+  metrology::LostMotionOptions options;
   options.rated_torque_nm = 100;
-  for (auto _ : state) benchmark::DoNotOptimize(procedures::analyse_lost_motion(rec, options));
+  for (auto _ : state) benchmark::DoNotOptimize(metrology::analyse_lost_motion(rec, options));
 }
 BENCHMARK(BM_LostMotionFit)->Unit(benchmark::kMillisecond);
 
@@ -62,9 +62,9 @@ void BM_DynamicTeOneOutputRevolution(benchmark::State& state) {
   }
   analysis::SpectrumAnalyser analyser;
   for (auto _ : state) {
-    benchmark::DoNotOptimize(procedures::analyse_dynamic_te(
-        t, th1, th2, procedures::GearSense{n_ratio, 1}, procedures::GearTeeth{160, 162, 2}, {},
-        procedures::DynamicTeOptions{}, analyser));
+    benchmark::DoNotOptimize(metrology::analyse_dynamic_te(
+        t, th1, th2, metrology::GearSense{n_ratio, 1}, metrology::GearTeeth{160, 162, 2}, {},
+        metrology::DynamicTeOptions{}, analyser));
   }
 }
 BENCHMARK(BM_DynamicTeOneOutputRevolution)->Unit(benchmark::kMillisecond);

@@ -11,7 +11,7 @@
 
 #include "commands.hpp"
 #include "wavebench/daemon/client_commands.hpp"
-#include "wavebench/runs/procedure_catalogue.hpp"
+#include "wavebench/procedures/procedure_catalogue.hpp"
 
 namespace wavebench::cli {
 namespace {
@@ -74,7 +74,7 @@ void register_daemon_client_commands(CLI::App& app, ExitStatus& status) {
       ->add_option("procedure", start_args->procedure,
                    "a procedure of the registry (GET /api/procedures)")
       ->required()
-      ->check(CLI::IsMember(runs::procedure_names()));
+      ->check(CLI::IsMember(procedures::procedure_names()));
   start->add_option("--option", start_args->options,
                     "procedure option KEY=VALUE (repeatable; VALUE as JSON where it parses, e.g. "
                     "positions=4 loads_nm=[0,60])");

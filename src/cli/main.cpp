@@ -4,16 +4,16 @@
 
 #include "account_commands.hpp"
 #include "commands.hpp"
-#include "wavebench/runs/allocator_policy.hpp"
-#include "wavebench/runs/software_version.hpp"
+#include "wavebench/procedures/allocator_policy.hpp"
+#include "wavebench/procedures/software_version.hpp"
 
 int main(int argc, char** argv) {
-  wavebench::runs::use_allocator_policy();
+  wavebench::procedures::use_allocator_policy();
   CLI::App app{"wavebench - strain-wave gear test bench and digital twin"};
   app.require_subcommand(1);
   app.set_version_flag("--version", std::string("wavebench ") +
-                                        wavebench::runs::software_version() + " (commit " +
-                                        wavebench::runs::software_commit() + ")");
+                                        wavebench::procedures::software_version() + " (commit " +
+                                        wavebench::procedures::software_commit() + ")");
   wavebench::cli::ExitStatus status;
   wavebench::cli::register_sim_commands(app, status);
   wavebench::cli::register_can_commands(app, status);

@@ -20,11 +20,11 @@
 #include "wavebench/fleet/run_summary.hpp"
 #include "wavebench/fleet/sqlite_results_store.hpp"
 #include "wavebench/report/run_report.hpp"
-#include "wavebench/runs/procedure_catalogue.hpp"
-#include "wavebench/runs/procedure_options_file.hpp"
-#include "wavebench/runs/run_executor.hpp"
-#include "wavebench/runs/run_request_check.hpp"
-#include "wavebench/runs/software_version.hpp"
+#include "wavebench/procedures/procedure_catalogue.hpp"
+#include "wavebench/procedures/procedure_options_file.hpp"
+#include "wavebench/procedures/run_executor.hpp"
+#include "wavebench/procedures/run_request_check.hpp"
+#include "wavebench/procedures/software_version.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::cli {
@@ -34,7 +34,7 @@ namespace {
 // every run, so that `wavebench fleet --runs DIR` and a daemon's fleet page see runs made
 // without a daemon too. Idempotent by (bench, run id): a daemon started on the folder later
 // finds it there and adds nothing. A failure here costs the summary only, never the run.
-void summarise_into_own_store(const storage::RunStore& store, const runs::RunOutcome& outcome) {
+void summarise_into_own_store(const storage::RunStore& store, const procedures::RunOutcome& outcome) {
   try {
     const auto record = store.find_run(outcome.run_id);
     if (!record) return;
@@ -63,7 +63,7 @@ struct RunArgs {
   std::vector<std::string> options;  // KEY=VALUE
   std::vector<std::string> limits;   // KEY=VALUE
   std::string spec;                  // a product spec's name (configs/specs/NAME.yaml)
-  std::string specs_dir;             // empty: runs::default_specs_dir()
+  std::string specs_dir;             // empty: procedures::default_specs_dir()
   bool no_twin = false;
   bool no_report = false;
   bool no_calibration = false;
@@ -96,13 +96,13 @@ void only_for(bool given, const char* flag, const RunArgs& a, const char* proced
   }
 }
 
-runs::RunRequest build_request(const RunArgs& a) {
-  runs::RunRequest r;
+procedures::RunRequest build_request(const RunArgs& a) {
+  procedures::RunRequest r;
   r.procedure = a.procedure;
   r.twin = !a.no_twin;
   r.report = !a.no_report;
   nlohmann::json o = nlohmann::json::object();
-  if (!a.options_file.empty()) o = runs::load_procedure_options(a.options_file);
+  if (!a.options_file.empty()) o = procedures::load_procedure_options(a.options_file);
   only_for(a.positions.has_value(), "--positions", a, "static");
   only_for(!a.loads.empty(), "--loads", a, "static");
   only_for(a.window.has_value(), "--window", a, "static");
@@ -127,8 +127,8 @@ runs::RunRequest build_request(const RunArgs& a) {
   if (a.no_calibration) o["calibrate_twin"] = false;
   r.options = o;
   if (!a.spec.empty()) {
-    r.spec = runs::find_product_spec(
-        a.specs_dir.empty() ? runs::default_specs_dir() : std::filesystem::path(a.specs_dir),
+    r.spec = procedures::find_product_spec(
+        a.specs_dir.empty() ? procedures::default_specs_dir() : std::filesystem::path(a.specs_dir),
         a.spec);
   }
   return r;
@@ -138,7 +138,7 @@ runs::RunRequest build_request(const RunArgs& a) {
 class RunProgressLine {
  public:
   explicit RunProgressLine(bool enabled) : enabled_(enabled), start_(Clock::now()) {}
-  void update(const runs::RunProgress& p) {
+  void update(const procedures::RunProgress& p) {
     if (!enabled_) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
     if (p.phase == phase_ && elapsed < last_ + 0.5 && p.fraction < 1) return;
@@ -163,14 +163,14 @@ class RunProgressLine {
 };
 
 int run_procedure(const RunArgs& a) {
-  runs::RunRequest request;
+  procedures::RunRequest request;
   bench::BenchConfig config;
   try {
     request = build_request(a);
     config = bench::bench_config_from_argument(a.bench);
     // The whole request against this bench and the runs folder, before anything is created
     // or moves: ranges, the bench's safety limits, duration and disk (issue #8).
-    runs::check_run_request(request, config.description, config.devices.size(), a.out);
+    procedures::check_run_request(request, config.description, config.devices.size(), a.out);
   } catch (const config::ConfigError& e) {
     std::cerr << "wavebench run: " << e.what() << "\n";
     return 2;
@@ -196,17 +196,17 @@ int run_procedure(const RunArgs& a) {
   // anything moves: a folder another process writes runs into is refused.
   std::optional<storage::RunStore> store;
   try {
-    store.emplace(a.out, runs::software_version());
+    store.emplace(a.out, procedures::software_version());
   } catch (const std::exception& e) {
     bench->disconnect();
     std::cerr << "wavebench run: --out " << a.out << ": " << e.what() << "\n";
     return 1;
   }
   RunProgressLine line(!a.quiet);
-  runs::RunOutcome outcome;
+  procedures::RunOutcome outcome;
   try {
-    outcome = runs::execute_run(*bench, *store, request,
-                                [&line](const runs::RunProgress& p) { line.update(p); });
+    outcome = procedures::execute_run(*bench, *store, request,
+                                [&line](const procedures::RunProgress& p) { line.update(p); });
   } catch (const std::exception& e) {
     line.finish();
     bench->disconnect();
@@ -256,7 +256,7 @@ void register_run_commands(CLI::App& app, ExitStatus& status) {
       "run", "Run one bench procedure without a daemon (any procedure of the registry)");
   cmd->add_option("procedure", args->procedure, "a procedure of the registry (GET /api/procedures)")
       ->required()
-      ->check(CLI::IsMember(runs::procedure_names()));
+      ->check(CLI::IsMember(procedures::procedure_names()));
   cmd->add_option("--bench", args->bench,
                   "'sim' (the in-process simulated bench) or a bench config file")
       ->capture_default_str();

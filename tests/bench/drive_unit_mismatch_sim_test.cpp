@@ -13,7 +13,7 @@
 #include "bench_test_support.hpp"
 #include "wavebench/bench/bench_check.hpp"
 #include "wavebench/bench/canopen_bench.hpp"
-#include "wavebench/runs/dynamic_te_procedure.hpp"
+#include "wavebench/procedures/dynamic_te_procedure.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
 
 namespace wavebench::bench::testing {
@@ -190,10 +190,10 @@ TEST(DriveUnitMismatch, RunStartedAnywayTripsOnTheEncoderSpeedWithin100Ms) {
   FaultWatch watch;
   watch.bench = sim.bench.get();
   sim.bench->add_observer(watch);
-  runs::DynamicTeOptions o;  // 100 "rpm" written in counts/s: 218453 rpm to this drive
+  procedures::DynamicTeOptions o;  // 100 "rpm" written in counts/s: 218453 rpm to this drive
   o.output_revolutions = 1;
   o.run_in_s = 1;
-  runs::DynamicTeProcedure procedure(o);
+  procedures::DynamicTeProcedure procedure(o);
   std::string reason;
   try {
     procedure.run(*sim.bench);

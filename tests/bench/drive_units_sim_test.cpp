@@ -19,8 +19,8 @@
 #include "wavebench/bench/bench_factory.hpp"
 #include "wavebench/bench/canopen_bench.hpp"
 #include "wavebench/bench/drive_channels.hpp"
-#include "wavebench/runs/dynamic_te_procedure.hpp"
-#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/procedures/dynamic_te_procedure.hpp"
+#include "wavebench/procedures/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::bench {
@@ -49,11 +49,11 @@ struct DynamicSpeed {
 };
 
 DynamicSpeed run_dynamic(Connected& c) {
-  runs::DynamicTeOptions o;  // input_rpm 100
+  procedures::DynamicTeOptions o;  // input_rpm 100
   o.output_revolutions = 1;
   o.run_in_s = 1;
   DynamicSpeed s;
-  runs::DynamicTeProcedure procedure(o);
+  procedures::DynamicTeProcedure procedure(o);
   // The drive's target velocity is read while the record runs, before the stop zeroes it.
   struct TargetProbe : SampleObserver {
     simdevices::ObjectDictionary* od = nullptr;
@@ -116,13 +116,13 @@ TEST(DriveUnitsOnSimulatedBench, DriveWithoutFollowingErrorCompletesAStaticRunCh
     Connected c(bench_config("sim-drive-without-following-error.yaml"));
     ASSERT_EQ(c.sim.bench->absent_channels(), std::vector<std::string>{kFollowingErrorChannel});
     storage::RunStore store(root, "test");
-    runs::RunRequest r;
+    procedures::RunRequest r;
     r.procedure = "static";
     r.options = {{"positions", 4}, {"loads_nm", {0}}, {"window_s", 0.1}};
     r.config_text = "name: sim-drive-without-following-error\n";
     r.twin = false;
     r.report = false;
-    const auto out = runs::execute_run(*c.sim.bench, store, r);
+    const auto out = procedures::execute_run(*c.sim.bench, store, r);
     EXPECT_EQ(out.status, storage::RunStatus::kComplete) << out.reason;
     EXPECT_EQ(out.results.at("absent_channels"), nlohmann::json::array({kFollowingErrorChannel}));
     const auto written = nlohmann::json::parse(std::ifstream(out.dir / "results.json"));

@@ -15,8 +15,8 @@
 #include "wavebench/bench/bench_check.hpp"
 #include "wavebench/bench/canopen_bench.hpp"
 #include "wavebench/canopen/sdo_abort.hpp"
-#include "wavebench/runs/dynamic_te_procedure.hpp"
-#include "wavebench/runs/static_te_procedure.hpp"
+#include "wavebench/procedures/dynamic_te_procedure.hpp"
+#include "wavebench/procedures/static_te_procedure.hpp"
 #include "wavebench/simdevices/simulated_bench_config.hpp"
 
 namespace wavebench::bench {
@@ -149,16 +149,16 @@ struct Figures {
 Figures run_static_and_dynamic(const BenchConfig& config) {
   testing::SimBench sim(config);
   sim.bench->connect();
-  runs::StaticTeOptions s;
+  procedures::StaticTeOptions s;
   s.positions = 4;
   s.loads_nm = {0};
   s.window_s = 0.1;
-  const auto st = runs::StaticTeProcedure(s).run(*sim.bench);
-  runs::DynamicTeOptions d;
+  const auto st = procedures::StaticTeProcedure(s).run(*sim.bench);
+  procedures::DynamicTeOptions d;
   d.input_rpm = 1000;
   d.output_revolutions = 1;
   d.run_in_s = 0.5;
-  const auto dy = runs::DynamicTeProcedure(d).run(*sim.bench);
+  const auto dy = procedures::DynamicTeProcedure(d).run(*sim.bench);
   sim.bench->disconnect();
   Figures f;
   EXPECT_FALSE(st.result.passes.empty());

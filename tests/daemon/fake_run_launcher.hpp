@@ -1,5 +1,5 @@
 #pragma once
-// A stand-in for runs::execute_run with the same contract: a bad request throws before
+// A stand-in for procedures::execute_run with the same contract: a bad request throws before
 // anything is created; the run's samples go to samples.wbs as acquired; a trip finishes the
 // run aborted with the trip's reason. Option "seconds" is the bench time the run takes.
 
@@ -25,12 +25,12 @@ class SampleLogObserver : public bench::SampleObserver {
 
 class FakeRunLauncher : public RunLauncher {
  public:
-  runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
-                          const runs::RunRequest& request,
-                          const runs::ProgressSink& progress) override {
+  procedures::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                          const procedures::RunRequest& request,
+                          const procedures::ProgressSink& progress) override {
     check(request, bench.description(), bench.extra_channels().size(), store.root());
     const double seconds = request.options.value("seconds", 0.2);
-    runs::RunOutcome outcome;
+    procedures::RunOutcome outcome;
     outcome.run_id =
         store.create_run(request.procedure, bench.description().unit_serial, request.config_text);
     outcome.dir = store.paths(outcome.run_id).dir;
@@ -66,7 +66,7 @@ class FakeRunLauncher : public RunLauncher {
     return outcome;
   }
 
-  void check(const runs::RunRequest& request, const bench::BenchDescription& /*bench*/,
+  void check(const procedures::RunRequest& request, const bench::BenchDescription& /*bench*/,
              std::size_t /*extra_channels*/,
              const std::filesystem::path& /*runs_root*/) const override {
     if (request.procedure != "static" && request.procedure != "dynamic" &&

@@ -40,14 +40,14 @@ TEST(StatedProgress, OverdueSaysAboutASecondNotDone) {
 
 RecordedLaunch job(const std::string& id, std::vector<std::string>& order, std::mutex& m,
                    std::chrono::milliseconds work) {
-  return {id, "dynamic", "U1", 5.0, [id, &order, &m, work](const runs::ProgressSink& progress) {
+  return {id, "dynamic", "U1", 5.0, [id, &order, &m, work](const procedures::ProgressSink& progress) {
             if (progress) progress({id, "twin calibration", 0.5, 2.0});
             std::this_thread::sleep_for(work);
             {
               std::lock_guard lock(m);
               order.push_back(id);
             }
-            runs::RunOutcome outcome;
+            procedures::RunOutcome outcome;
             outcome.run_id = id;
             return outcome;
           }};
@@ -57,7 +57,7 @@ TEST(PostRunQueue, OneAtATimeInOrderAndDrainWaitsForAll) {
   std::vector<std::string> order;
   std::mutex m;
   std::atomic<int> done{0};
-  PostRunQueue queue([&](const std::string&, const runs::RunOutcome* outcome, const std::string&) {
+  PostRunQueue queue([&](const std::string&, const procedures::RunOutcome* outcome, const std::string&) {
     EXPECT_NE(outcome, nullptr);
     ++done;
   });
@@ -82,11 +82,11 @@ TEST(PostRunQueue, AFailingJobIsReportedAndTheNextStillRuns) {
   std::vector<std::string> errors;
   std::vector<std::string> order;
   std::mutex m;
-  PostRunQueue queue([&](const std::string& id, const runs::RunOutcome*, const std::string& e) {
+  PostRunQueue queue([&](const std::string& id, const procedures::RunOutcome*, const std::string& e) {
     std::lock_guard lock(m);
     if (!e.empty()) errors.push_back(id + ": " + e);
   });
-  queue.push({"x", "static", "U1", 1.0, [](const runs::ProgressSink&) -> runs::RunOutcome {
+  queue.push({"x", "static", "U1", 1.0, [](const procedures::ProgressSink&) -> procedures::RunOutcome {
                 throw std::runtime_error("disk gone");
               }});
   queue.push(job("y", order, m, 1ms));

@@ -35,8 +35,8 @@ namespace {
 // Ten runs (issue #9's acceptance); each takes about ten seconds of real time on the real clock.
 constexpr int kRuns = 10;
 
-runs::RunRequest short_static_run() {
-  runs::RunRequest r;
+procedures::RunRequest short_static_run() {
+  procedures::RunRequest r;
   r.procedure = "static";
   // One load (half the run time), moves at 250 rad/s (the default 62.8 makes a run last 36 s on
   // the real clock: twice one output turn of travel) and a shorter averaging window.

@@ -39,7 +39,7 @@ def run(cmd, **kw):
 
 
 def record_te(t_ns, theta_in, theta_out, first_ns, last_ns, ratio, sign):
-    """The dynamic procedure's record (procedures::dynamic_te_input) and its TE [arcsec]."""
+    """The dynamic procedure's record (metrology::dynamic_te_input) and its TE [arcsec]."""
     keep = (t_ns >= first_ns) & (t_ns <= last_ns) & ~np.isnan(theta_in) & ~np.isnan(theta_out)
     ti, to, tk = theta_in[keep], theta_out[keep], t_ns[keep]
     direction = -1.0 if to[-1] < to[0] else 1.0

@@ -11,11 +11,11 @@
 
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
-#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/procedures/run_executor.hpp"
 #include "wavebench/simdevices/simulated_bench.hpp"
 #include "wavebench/storage/run_store.hpp"
 
-namespace wavebench::runs {
+namespace wavebench::procedures {
 namespace {
 
 namespace fs = std::filesystem;
@@ -98,4 +98,4 @@ TEST(HostileAbortedFigures, AStaticRunTrippedDuringItsSecondLoadKeepsItsFinished
 }
 
 }  // namespace
-}  // namespace wavebench::runs
+}  // namespace wavebench::procedures

@@ -12,10 +12,10 @@
 
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
-#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/procedures/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
 
-namespace wavebench::runs {
+namespace wavebench::procedures {
 namespace {
 
 namespace fs = std::filesystem;
@@ -88,4 +88,4 @@ TEST(HostileResultsReport, AReportThatCannotBeWrittenEndsTheRunAbortedNotPass) {
 }
 
 }  // namespace
-}  // namespace wavebench::runs
+}  // namespace wavebench::procedures

@@ -18,11 +18,11 @@
 #include "file_size_limit.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
-#include "wavebench/runs/run_executor.hpp"
+#include "wavebench/procedures/run_executor.hpp"
 #include "wavebench/storage/run_store.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
-namespace wavebench::runs {
+namespace wavebench::procedures {
 namespace {
 
 namespace fs = std::filesystem;
@@ -142,4 +142,4 @@ TEST(HostileRunsDiskFull, ADynamicRunWhoseLogCannotBeWrittenIsTrippedAndEndsAbor
 }
 
 }  // namespace
-}  // namespace wavebench::runs
+}  // namespace wavebench::procedures

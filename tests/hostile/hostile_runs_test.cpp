@@ -15,11 +15,11 @@
 #include "cli_run.hpp"
 #include "wavebench/bench/bench_config.hpp"
 #include "wavebench/bench/bench_factory.hpp"
-#include "wavebench/runs/run_executor.hpp"
-#include "wavebench/runs/run_request_check.hpp"
+#include "wavebench/procedures/run_executor.hpp"
+#include "wavebench/procedures/run_request_check.hpp"
 #include "wavebench/storage/run_store.hpp"
 
-namespace wavebench::runs {
+namespace wavebench::procedures {
 namespace {
 
 namespace fs = std::filesystem;
@@ -304,4 +304,4 @@ TEST_F(HostileRuns, ACliStartOnAFullFileSystemExitsTwoAndCreatesNothing) {
 }
 
 }  // namespace
-}  // namespace wavebench::runs
+}  // namespace wavebench::procedures

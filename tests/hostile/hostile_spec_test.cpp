@@ -11,9 +11,9 @@
 #include <vector>
 
 #include "cli_run.hpp"
-#include "wavebench/runs/product_spec.hpp"
+#include "wavebench/procedures/product_spec.hpp"
 
-namespace wavebench::runs {
+namespace wavebench::procedures {
 namespace {
 
 namespace fs = std::filesystem;
@@ -132,4 +132,4 @@ TEST_F(HostileSpecs, TheCliRefusesABadSpecNameWithExit2AndCreatesNoRun) {
 }
 
 }  // namespace
-}  // namespace wavebench::runs
+}  // namespace wavebench::procedures

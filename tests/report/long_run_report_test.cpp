@@ -56,8 +56,8 @@ class LongRunReport : public ::testing::Test {
     whole_ = nullptr;
     fs::remove_all(base_);
   }
-  static procedures::GearSense sense() {
-    procedures::GearSense s;
+  static metrology::GearSense sense() {
+    metrology::GearSense s;
     s.ratio = spec_.ratio;
     return s;
   }

@@ -255,7 +255,7 @@ TEST_F(RunReportTest, DynamicRunSpectrumPeaksAndAliased) {
 }
 
 TEST(DynamicTrace, LeavesTheRunInOutAndComputesTe) {
-  const procedures::GearSense sense{50, 1};
+  const metrology::GearSense sense{50, 1};
   std::vector<storage::SyncSample> samples;
   for (std::uint32_t i = 0; i < 3000; ++i) {
     const double t = i * 1e-3;

@@ -7,7 +7,7 @@
 #include <numbers>
 #include <sstream>
 
-#include "wavebench/procedures/torsional_loop.hpp"
+#include "wavebench/metrology/torsional_loop.hpp"
 #include "wavebench/report/run_report.hpp"
 #include "wavebench/report/torsional_section.hpp"
 #include "wavebench/storage/run_store.hpp"
@@ -29,34 +29,34 @@ std::string slurp(const fs::path& p) {
 // A torsional section as the procedure writes it, from the loop of a three-segment gear with
 // 0.35 arcmin of backlash (the analysis' own JSON, points added as the procedure adds them).
 json torsional_results() {
-  procedures::ThreeSegmentStiffness law;
+  metrology::ThreeSegmentStiffness law;
   law.k1 = 2.88e4;
   law.t1 = 14;
   law.k2 = 4.32e4;
   law.t2 = 48;
   law.k3 = 5.76e4;
   const double b = 0.35 * kArcmin;
-  std::vector<procedures::LoopPoint> loop;
+  std::vector<metrology::LoopPoint> loop;
   json points = json::array();
-  const auto add = [&](procedures::LoopBranch branch, double t, bool voided = false) {
+  const auto add = [&](metrology::LoopBranch branch, double t, bool voided = false) {
     const double twist = law.twist_at(t) + (t >= 0 ? b / 2 : -b / 2);
     loop.push_back({branch, t, twist, 1e-8, 1e-3, voided});
-    points.push_back({{"branch", procedures::loop_branch_name(branch)},
+    points.push_back({{"branch", metrology::loop_branch_name(branch)},
                       {"torque_nm", t},
                       {"twist_arcmin", twist / kArcmin},
                       {"output_moved_arcmin", voided ? 2.0 : 0.0},
                       {"voided", voided}});
   };
-  for (double t = 0.7; t <= 82; t += 0.7) add(procedures::LoopBranch::kFirstLoading, t);
-  add(procedures::LoopBranch::kUnloading, 60, true);
-  for (double t = 82; t >= -82; t -= 0.7) add(procedures::LoopBranch::kUnloading, t);
-  for (double t = -82; t < 0; t += 0.7) add(procedures::LoopBranch::kReloading, t);
-  procedures::LoopSensors sensors;
+  for (double t = 0.7; t <= 82; t += 0.7) add(metrology::LoopBranch::kFirstLoading, t);
+  add(metrology::LoopBranch::kUnloading, 60, true);
+  for (double t = 82; t >= -82; t -= 0.7) add(metrology::LoopBranch::kUnloading, t);
+  for (double t = -82; t < 0; t += 0.7) add(metrology::LoopBranch::kReloading, t);
+  metrology::LoopSensors sensors;
   sensors.ratio = 100;
   sensors.output_encoder_step_rad = 2 * std::numbers::pi / 1048576;
-  procedures::TorsionalLoopOptions options;
+  metrology::TorsionalLoopOptions options;
   options.rated_torque_nm = 100;
-  json t = procedures::to_json(procedures::analyse_torsional_loop(loop, sensors, options));
+  json t = metrology::to_json(metrology::analyse_torsional_loop(loop, sensors, options));
   t["points"] = points;
   t["t_max_nm"] = 82;
   t["t_max_reason"] = "the rated torque 100 N·m, reduced to 82 N·m";

@@ -110,7 +110,7 @@ TEST(MeasuredDriveTwin, SamplesWithoutInputAngleAreSkippedNotFilled) {
 
 TEST(MeasuredDriveTwin, RefusesATwinWhoseRatioIsNotTheBenchs) {
   const auto gear = testing::true_gear();
-  EXPECT_THROW(MeasuredDriveTwin(gear, procedures::GearSense{100, 1}), std::invalid_argument);
+  EXPECT_THROW(MeasuredDriveTwin(gear, metrology::GearSense{100, 1}), std::invalid_argument);
 }
 
 TEST(TwinOverlay, CsvHasOneRowPerPointAndTheResidual) {

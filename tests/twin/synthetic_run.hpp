@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "wavebench/model/gear_params.hpp"
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
@@ -148,7 +148,7 @@ inline SyntheticRun synthesise_run(const model::GearParams& gear,
   return run;
 }
 
-inline procedures::GearSense sense_of(const model::GearParams& g) {
+inline metrology::GearSense sense_of(const model::GearParams& g) {
   return {g.geometry.ratio, g.geometry.direction_sign};
 }
 

@@ -97,12 +97,12 @@ TEST(TwinCalibration, CalibratedConfigLoadsBackWithTheSameParameters) {
 TEST(TwinCalibration, StaticRunEstimateSeedsBacklashAndStiffness) {
   // A static result whose lost motion and load shift say: backlash 1 arcmin, 20 N*m twists
   // the true unit by x(20) = 20 / 6.7e4.
-  procedures::StaticTeResult st;
-  procedures::LostMotionProfile lm;
+  metrology::StaticTeResult st;
+  metrology::LostMotionProfile lm;
   lm.load_nm = 0;
   lm.mean_arcmin = 1.0;
   st.lost_motion.push_back(lm);
-  procedures::LoadShift shift;
+  metrology::LoadShift shift;
   shift.load_nm = 20;
   shift.reference_load_nm = 0;
   shift.shift_arcmin = 20 / 6.7e4 / kArcmin;

@@ -29,7 +29,7 @@ class BenchThread::StatsObserver : public bench::SampleObserver {
 struct BenchThread::Job {
   enum class Kind { kRun, kReset, kCheck };
   Kind kind = Kind::kRun;
-  runs::RunRequest request;
+  procedures::RunRequest request;
   std::promise<StartOutcome> started;  // kRun: fulfilled once
   bool started_set = false;
   std::promise<std::string> reset_done;   // kReset: error text
@@ -50,7 +50,7 @@ BenchThread::BenchThread(BenchFactory factory, storage::RunStore& store, RunLaun
       config_text_(std::move(config_text)),
       live_(live),
       stats_observer_(std::make_unique<StatsObserver>(*this)),
-      post_runs_([this](const std::string& id, const runs::RunOutcome* outcome,
+      post_runs_([this](const std::string& id, const procedures::RunOutcome* outcome,
                         const std::string& error) { post_run_done(id, outcome, error); }) {}
 
 BenchThread::~BenchThread() {
@@ -190,7 +190,7 @@ void BenchThread::run_job(Job& job) {
     run_queued_ = false;
     run_ = ActiveRun{"", procedure, "starting", 0, -1, {}, nlohmann::json::array(), {}};
   }
-  auto progress = [this, &job](const runs::RunProgress& p) {
+  auto progress = [this, &job](const procedures::RunProgress& p) {
     {
       std::lock_guard lock(mutex_);
       if (run_) {
@@ -218,7 +218,7 @@ void BenchThread::run_job(Job& job) {
     std::lock_guard lock(mutex_);
     if (run_) run_->diagnosis_flags.push_back(flag);
   };
-  job.request.on_point = [this](const runs::SettledPoint& point) {
+  job.request.on_point = [this](const procedures::SettledPoint& point) {
     std::lock_guard lock(mutex_);
     if (!run_) return;
     if (run_->points.size() >= ActiveRun::kMaxPoints) run_->points.pop_front();
@@ -262,7 +262,7 @@ void BenchThread::run_job(Job& job) {
   run_ended_.notify_all();
 }
 
-void BenchThread::post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
+void BenchThread::post_run_done(const std::string& run_id, const procedures::RunOutcome* outcome,
                                 const std::string& error) {
   if (outcome) {
     if (outcome->status == storage::RunStatus::kComplete) {
@@ -354,7 +354,7 @@ CheckOutcome BenchThread::check(std::chrono::milliseconds wait) {
   return done.get();
 }
 
-StartOutcome BenchThread::start_run(runs::RunRequest request, std::chrono::milliseconds wait) {
+StartOutcome BenchThread::start_run(procedures::RunRequest request, std::chrono::milliseconds wait) {
   auto job = std::make_shared<Job>();
   job->kind = Job::Kind::kRun;
   job->request = std::move(request);

@@ -25,8 +25,8 @@
 #include "wavebench/daemon/sample_json.hpp"
 #include "wavebench/daemon/servo_words.hpp"
 #include "wavebench/daemon/session_table.hpp"
-#include "wavebench/runs/procedure_catalogue.hpp"
-#include "wavebench/runs/product_spec.hpp"
+#include "wavebench/procedures/procedure_catalogue.hpp"
+#include "wavebench/procedures/product_spec.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace wavebench::daemon {
@@ -170,7 +170,7 @@ DaemonApi::DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuf
       live_(live),
       token_(std::move(token)),
       host_check_(std::move(host_check)),
-      specs_dir_(specs_dir.empty() ? runs::default_specs_dir() : std::move(specs_dir)),
+      specs_dir_(specs_dir.empty() ? procedures::default_specs_dir() : std::move(specs_dir)),
       reads_(std::make_shared<LowPriorityReads>(kMaxConcurrentReads)),
       console_(console ? std::move(console) : std::make_shared<const ConsoleFiles>()),
       software_(std::move(software)),
@@ -242,7 +242,7 @@ std::span<const ApiRoute> DaemonApi::routes() {
        }},
       {"GET", "/api/procedures", R::kNone, C::kCheap,
        [](const DaemonApi&, const Call&) {
-         return ApiResponse{200, runs::procedures_json()};
+         return ApiResponse{200, procedures::procedures_json()};
        }},
       {"GET", "/api/specs", R::kNone, C::kCheap,
        [](const DaemonApi& api, const Call&) { return api.list_specs(); }},
@@ -706,7 +706,7 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request, const SessionIdentit
                            "operator, twin or report");
     }
   }
-  runs::RunRequest run;
+  procedures::RunRequest run;
   const auto procedure = body.find("procedure");
   if (procedure == body.end() || !procedure->is_string()) {
     return api_error(400, "bad request",
@@ -749,7 +749,7 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request, const SessionIdentit
                      "only; changing a spec's limits needs an engineer's account");
   }
   try {
-    runs::check_run_identity(run);
+    procedures::check_run_identity(run);
   } catch (const std::invalid_argument& e) {
     return api_error(400, "bad request", e.what());
   }
@@ -759,7 +759,7 @@ ApiResponse DaemonApi::start_run(const ApiRequest& request, const SessionIdentit
                        "spec: got " + spec->dump() + ", expected a spec name (GET /api/specs)");
     }
     try {
-      run.spec = runs::find_product_spec(specs_dir_, spec->get<std::string>());
+      run.spec = procedures::find_product_spec(specs_dir_, spec->get<std::string>());
     } catch (const std::invalid_argument& e) {
       return api_error(400, "bad request", e.what());
     }
@@ -829,9 +829,9 @@ ApiResponse DaemonApi::list_specs() const {
   nlohmann::json specs = nlohmann::json::array();
   nlohmann::json refused = nlohmann::json::array();
   // A spec file that does not load is listed with its reason: the others stay usable.
-  for (const auto& name : runs::product_spec_names(specs_dir_)) {
+  for (const auto& name : procedures::product_spec_names(specs_dir_)) {
     try {
-      specs.push_back(runs::load_product_spec(specs_dir_ / (name + ".yaml")).to_json());
+      specs.push_back(procedures::load_product_spec(specs_dir_ / (name + ".yaml")).to_json());
     } catch (const std::exception& e) {
       refused.push_back({{"name", name}, {"error", e.what()}});
     }

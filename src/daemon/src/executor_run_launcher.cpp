@@ -1,6 +1,6 @@
 #include "wavebench/daemon/run_launcher.hpp"
-#include "wavebench/runs/recorded_run.hpp"
-#include "wavebench/runs/run_request_check.hpp"
+#include "wavebench/procedures/recorded_run.hpp"
+#include "wavebench/procedures/run_request_check.hpp"
 
 namespace wavebench::daemon {
 
@@ -8,23 +8,23 @@ namespace {
 
 class ExecutorRunLauncher : public RunLauncher {
  public:
-  runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
-                          const runs::RunRequest& request,
-                          const runs::ProgressSink& progress) override {
-    return runs::execute_run(bench, store, request, progress);
+  procedures::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                          const procedures::RunRequest& request,
+                          const procedures::ProgressSink& progress) override {
+    return procedures::execute_run(bench, store, request, progress);
   }
   RecordedLaunch record(bench::Bench& bench, storage::RunStore& store,
-                        const runs::RunRequest& request,
-                        const runs::ProgressSink& progress) override {
+                        const procedures::RunRequest& request,
+                        const procedures::ProgressSink& progress) override {
     auto recorded =
-        std::make_shared<runs::RecordedRun>(runs::record_run(bench, store, request, progress));
+        std::make_shared<procedures::RecordedRun>(procedures::record_run(bench, store, request, progress));
     return {recorded->run_id(), recorded->procedure(), recorded->unit_serial(),
             recorded->post_run_estimate_s(),
-            [recorded](const runs::ProgressSink& p) { return recorded->finish(p); }};
+            [recorded](const procedures::ProgressSink& p) { return recorded->finish(p); }};
   }
-  void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
+  void check(const procedures::RunRequest& request, const bench::BenchDescription& bench,
              std::size_t extra_channels, const std::filesystem::path& runs_root) const override {
-    runs::check_run_request(request, bench, extra_channels, runs_root);
+    procedures::check_run_request(request, bench, extra_channels, runs_root);
   }
 };
 

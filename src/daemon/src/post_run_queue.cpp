@@ -74,7 +74,7 @@ void PostRunQueue::worker_main() {
     lock.unlock();
     const auto& id = entry->run.run_id;
     try {
-      const auto outcome = entry->run.finish([this, &entry](const runs::RunProgress& p) {
+      const auto outcome = entry->run.finish([this, &entry](const procedures::RunProgress& p) {
         std::lock_guard progress_lock(mutex_);
         entry->phase = p.phase;
         entry->progress.report(p.fraction, p.remaining_s);

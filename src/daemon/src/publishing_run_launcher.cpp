@@ -6,9 +6,9 @@ PublishingRunLauncher::PublishingRunLauncher(std::unique_ptr<RunLauncher> inner,
                                              fleet::Outbox& outbox)
     : inner_(std::move(inner)), outbox_(outbox) {}
 
-runs::RunOutcome PublishingRunLauncher::launch(bench::Bench& bench, storage::RunStore& store,
-                                               const runs::RunRequest& request,
-                                               const runs::ProgressSink& progress) {
+procedures::RunOutcome PublishingRunLauncher::launch(bench::Bench& bench, storage::RunStore& store,
+                                               const procedures::RunRequest& request,
+                                               const procedures::ProgressSink& progress) {
   // A launch that throws after creating its run leaves it `running` in the index: the next
   // start marks it incomplete and the outbox's backlog sends it then.
   auto outcome = inner_->launch(bench, store, request, progress);
@@ -17,11 +17,11 @@ runs::RunOutcome PublishingRunLauncher::launch(bench::Bench& bench, storage::Run
 }
 
 RecordedLaunch PublishingRunLauncher::record(bench::Bench& bench, storage::RunStore& store,
-                                             const runs::RunRequest& request,
-                                             const runs::ProgressSink& progress) {
+                                             const procedures::RunRequest& request,
+                                             const procedures::ProgressSink& progress) {
   auto recorded = inner_->record(bench, store, request, progress);
   recorded.finish = [finish = std::move(recorded.finish),
-                     &outbox = outbox_](const runs::ProgressSink& p) {
+                     &outbox = outbox_](const procedures::ProgressSink& p) {
     auto outcome = finish(p);
     outbox.enqueue(outcome.run_id);
     return outcome;
@@ -29,7 +29,7 @@ RecordedLaunch PublishingRunLauncher::record(bench::Bench& bench, storage::RunSt
   return recorded;
 }
 
-void PublishingRunLauncher::check(const runs::RunRequest& request,
+void PublishingRunLauncher::check(const procedures::RunRequest& request,
                                   const bench::BenchDescription& bench, std::size_t extra_channels,
                                   const std::filesystem::path& runs_root) const {
   inner_->check(request, bench, extra_channels, runs_root);

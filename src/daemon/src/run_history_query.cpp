@@ -6,7 +6,7 @@
 #include <optional>
 #include <stdexcept>
 
-#include "wavebench/runs/procedure_catalogue.hpp"
+#include "wavebench/procedures/procedure_catalogue.hpp"
 
 namespace wavebench::daemon {
 
@@ -95,7 +95,7 @@ storage::RunQuery parse_run_history_query(const std::map<std::string, std::strin
   std::optional<std::string> from_text, to_text;
   for (const auto& [key, value] : query) {
     if (key == "procedure") {
-      const auto names = runs::procedure_names();
+      const auto names = procedures::procedure_names();
       if (std::find(names.begin(), names.end(), value) == names.end()) {
         std::string list;
         for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;

@@ -24,8 +24,8 @@
 #include "wavebench/daemon/daemon_options.hpp"
 #include "wavebench/daemon/last_resort_guard.hpp"
 #include "wavebench/fleet/results_config.hpp"
-#include "wavebench/runs/allocator_policy.hpp"
-#include "wavebench/runs/software_version.hpp"
+#include "wavebench/procedures/allocator_policy.hpp"
+#include "wavebench/procedures/software_version.hpp"
 
 namespace {
 
@@ -96,7 +96,7 @@ int run(const daemon::DaemonOptions& options) {
                  options.accounts_file.string());
   setup.logins = std::move(setup_logins);
   spdlog::info("wavebenchd {} ({}) starting: bench config {}, runs in {}, token in {}",
-               runs::software_version(), runs::software_commit(), config.source,
+               procedures::software_version(), procedures::software_commit(), config.source,
                options.runs_dir.string(), token_file.string());
   setup.bench_factory = [config] { return bench::make_bench(config); };
   setup.launcher = daemon::make_executor_run_launcher();
@@ -107,8 +107,8 @@ int run(const daemon::DaemonOptions& options) {
   setup.listen_address = options.listen.host;
   setup.port = options.listen.port;
   setup.config_text = config.text;
-  setup.software_version = runs::software_version();
-  setup.software_commit = runs::software_commit();
+  setup.software_version = procedures::software_version();
+  setup.software_commit = procedures::software_commit();
   setup.console_root = options.web_root.empty() ? daemon::default_console_root() : options.web_root;
   if (setup.console_root.empty()) {
     spdlog::warn("no console files found (--web-root): the API is served, the console is not");
@@ -157,10 +157,10 @@ int run(const daemon::DaemonOptions& options) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  runs::use_allocator_policy();
+  procedures::use_allocator_policy();
   CLI::App app{"wavebenchd - the strain-wave gear test bench daemon"};
-  app.set_version_flag("--version", std::string("wavebenchd ") + runs::software_version() +
-                                        " (commit " + runs::software_commit() + ")");
+  app.set_version_flag("--version", std::string("wavebenchd ") + procedures::software_version() +
+                                        " (commit " + procedures::software_commit() + ")");
   daemon::DaemonOptions options;
   std::string listen = "127.0.0.1:8470";
   std::string runs_dir = options.runs_dir.string();

@@ -1,4 +1,4 @@
-// The dynamic TE procedure's figures (src/runs/src/dynamic_te_procedure.cpp).
+// The dynamic TE procedure's figures (src/procedures/src/dynamic_te_procedure.cpp).
 #include <array>
 
 #include "figure_units.hpp"

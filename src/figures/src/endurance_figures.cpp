@@ -1,4 +1,4 @@
-// The endurance procedure's figures (src/runs/src/endurance_procedure.cpp): its summary over
+// The endurance procedure's figures (src/procedures/src/endurance_procedure.cpp): its summary over
 // the analysed output revolutions.
 #include <array>
 

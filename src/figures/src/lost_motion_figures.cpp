@@ -1,4 +1,4 @@
-// The lost-motion procedure's figures (src/runs/src/lost_motion_procedure.cpp).
+// The lost-motion procedure's figures (src/procedures/src/lost_motion_procedure.cpp).
 #include <array>
 
 #include "figure_units.hpp"

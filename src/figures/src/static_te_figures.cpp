@@ -1,4 +1,4 @@
-// The static TE procedure's figures (src/runs/src/static_te_procedure.cpp).
+// The static TE procedure's figures (src/procedures/src/static_te_procedure.cpp).
 #include <array>
 
 #include "figure_units.hpp"

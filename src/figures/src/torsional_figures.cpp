@@ -1,4 +1,4 @@
-// The locked-output torsional procedure's figures (src/runs/src/torsional_procedure.cpp; the
+// The locked-output torsional procedure's figures (src/procedures/src/torsional_procedure.cpp; the
 // catalogues' definitions, bench.md §4). Each is an uncertain figure object.
 #include <array>
 

@@ -5,7 +5,7 @@
 #include <stdexcept>
 #include <string>
 
-#include "wavebench/procedures/dynamic_te_analysis.hpp"
+#include "wavebench/metrology/dynamic_te_analysis.hpp"
 
 namespace wavebench::report {
 
@@ -45,7 +45,7 @@ void AveragedSpectrum::add(double t, double value) {
 }
 
 void AveragedSpectrum::analyse_segment() {
-  const auto s = procedures::spectrum_on_timestamps(t_, v_, analysis::Window::kHann, analyser_);
+  const auto s = metrology::spectrum_on_timestamps(t_, v_, analysis::Window::kHann, analyser_);
   if (segments_ == 0) {
     sum_frequency_.assign(s.frequency_hz.size(), 0.0);
     sum_power_.assign(s.amplitude.size(), 0.0);
@@ -63,7 +63,7 @@ void AveragedSpectrum::analyse_segment() {
 std::optional<analysis::AmplitudeSpectrum> AveragedSpectrum::result() const {
   if (segments_ == 0) {
     if (t_.size() < 16) return std::nullopt;
-    return procedures::spectrum_on_timestamps(t_, v_, analysis::Window::kHann, analyser_);
+    return metrology::spectrum_on_timestamps(t_, v_, analysis::Window::kHann, analyser_);
   }
   analysis::AmplitudeSpectrum out;
   const double m = static_cast<double>(segments_);

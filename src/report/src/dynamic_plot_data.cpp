@@ -88,7 +88,7 @@ struct SteadyBand {
 // Without a summary: the median in one pass, the bounds in another (each sample carries the
 // angle range of the part up to it, so the part's range is known at its end).
 std::optional<SteadyPart> steady_part_in_passes(const fs::path& log, const SampleLogFacts& facts,
-                                                const procedures::GearSense& sense) {
+                                                const metrology::GearSense& sense) {
   const std::uint64_t n = facts.angle_samples;
   const std::size_t w = window_for(n);
   const std::uint64_t stride = median_stride(n);
@@ -146,7 +146,7 @@ std::optional<SteadyPart> steady_part_in_passes(const fs::path& log, const Sampl
 // the last from the last such blocks, each block read with the w samples after it.
 std::optional<SteadyPart> steady_part_from_summary(const fs::path& log, const SampleLogFacts& facts,
                                                    const InputSpeedSummary& summary,
-                                                   const procedures::GearSense& sense) {
+                                                   const metrology::GearSense& sense) {
   const std::uint64_t n = facts.angle_samples;
   const std::size_t w = summary.window();
   const SteadyBand band{median(summary.median_speeds())};
@@ -272,7 +272,7 @@ DynamicPlotData reduce_dynamic_trace(const DynamicTrace& trace, double ratio, st
 }
 
 std::optional<DynamicPlotData> dynamic_plot_data(const fs::path& log, const SampleLogFacts& facts,
-                                                 const procedures::GearSense& sense,
+                                                 const metrology::GearSense& sense,
                                                  std::size_t columns,
                                                  analysis::SpectrumAnalyser& analyser) {
   if (facts.angle_samples < 16 || !(sense.ratio > 0)) return std::nullopt;
@@ -294,7 +294,7 @@ std::optional<DynamicPlotData> dynamic_plot_data(const fs::path& log, const Samp
     return (sense.model_output_angle(s.th_out) - out0) * kDegPerRad;
   };
   const auto te_of = [&](const AngleSample& s) {
-    return sense.transmission_error(s.th_in, s.th_out) * procedures::kArcsecPerRad;
+    return sense.transmission_error(s.th_in, s.th_out) * metrology::kArcsecPerRad;
   };
   analysis::MinMaxEnvelope by_angle(part->angle_lo, part->angle_hi, columns, 1);
   analysis::MinMaxEnvelope by_time(0, span, columns, 1);

@@ -73,10 +73,10 @@ const json* section(const json& results, const std::string& key, json::value_t t
   return it != results.end() && it->type() == type ? &*it : nullptr;
 }
 
-std::optional<procedures::GearSense> sense_from_results(const json& results) {
+std::optional<metrology::GearSense> sense_from_results(const json& results) {
   const json* g = section(results, "gear", json::value_t::object);
   if (!g || !number(*g, "ratio")) return std::nullopt;
-  procedures::GearSense sense;
+  metrology::GearSense sense;
   sense.ratio = (*g)["ratio"].get<double>();
   if (auto s = number(*g, "direction_sign")) sense.direction_sign = *s < 0 ? -1 : 1;
   if (!(sense.ratio > 0)) return std::nullopt;
@@ -196,7 +196,7 @@ void GearSenseFit::add(const storage::SyncSample& s) {
   sxy_ += x * y;
 }
 
-std::optional<procedures::GearSense> GearSenseFit::result() const {
+std::optional<metrology::GearSense> GearSenseFit::result() const {
   // Below about a degree of output travel the TE itself would bend the slope.
   if (n_ < 3 || hi_ - lo_ < 0.02) return std::nullopt;
   const double var = sxx_ - sx_ * sx_ / n_;
@@ -206,13 +206,13 @@ std::optional<procedures::GearSense> GearSenseFit::result() const {
   if (!(ratio > 0) || !std::isfinite(ratio)) return std::nullopt;
   const double half_steps = std::round(ratio * 2) / 2;
   if (std::abs(half_steps - ratio) < 0.01 * ratio) ratio = half_steps;
-  procedures::GearSense sense;
+  metrology::GearSense sense;
   sense.ratio = ratio;
   sense.direction_sign = slope < 0 ? -1 : 1;
   return sense;
 }
 
-std::optional<procedures::GearSense> estimate_gear_sense(
+std::optional<metrology::GearSense> estimate_gear_sense(
     const std::vector<storage::SyncSample>& samples) {
   GearSenseFit fit;
   for (const auto& s : samples) fit.add(s);

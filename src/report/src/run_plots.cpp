@@ -6,8 +6,8 @@
 #include <map>
 #include <numbers>
 
-#include "wavebench/procedures/dynamic_te_analysis.hpp"
-#include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/metrology/dynamic_te_analysis.hpp"
+#include "wavebench/metrology/lost_motion_fit.hpp"
 #include "wavebench/report/dynamic_plot_data.hpp"
 
 namespace wavebench::report {
@@ -52,7 +52,7 @@ std::string load_label(double load_nm) {
 }  // namespace
 
 std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>& samples,
-                                          const procedures::GearSense& sense) {
+                                          const metrology::GearSense& sense) {
   std::vector<double> t, th_in, th_out;
   for (const auto& s : samples) {
     if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid)) continue;
@@ -87,7 +87,7 @@ std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>
         (sense.model_output_angle(th_out[i]) - sense.model_output_angle(th_out[first])) *
         kDegPerRad);
     trace.te_arcsec.push_back(sense.transmission_error(th_in[i], th_out[i]) *
-                              procedures::kArcsecPerRad);
+                              metrology::kArcsecPerRad);
   }
   const double span = t[last - 1] - t[first];
   trace.input_speed_hz =
@@ -288,7 +288,7 @@ std::optional<TorqueTwistCurve> torque_twist_from_results(const json& fit) {
   for (const auto& p : *pts) {
     const auto torque = number(p, "torque_nm");
     std::optional<double> twist;
-    if (const auto r = number(p, "twist_rad")) twist = *r * procedures::kArcminPerRad;
+    if (const auto r = number(p, "twist_rad")) twist = *r * metrology::kArcminPerRad;
     if (const auto a = number(p, "twist_arcmin")) twist = *a;
     if (const auto s = number(p, "twist_arcsec")) twist = *s / 60;
     if (!torque || !twist) continue;
@@ -303,7 +303,7 @@ std::optional<TorqueTwistCurve> torque_twist_from_results(const json& fit) {
 }
 
 std::optional<TorqueTwistCurve> torque_twist_from_samples(
-    const std::vector<storage::SyncSample>& samples, const procedures::GearSense& sense) {
+    const std::vector<storage::SyncSample>& samples, const metrology::GearSense& sense) {
   TorqueTwistCurve c;
   for (const auto& s : samples) {
     if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid) ||
@@ -312,7 +312,7 @@ std::optional<TorqueTwistCurve> torque_twist_from_samples(
     }
     // Twist θ1/N − θ2 = −TE, as the fits' points give it.
     c.twist_arcmin.push_back(-sense.transmission_error(s.theta_in_rad, s.theta_out_rad) *
-                             procedures::kArcminPerRad);
+                             metrology::kArcminPerRad);
     c.torque_nm.push_back(s.torque_nm);
     // A brake only resists motion, so the torque's sign is the direction of travel.
     c.travel.push_back(s.torque_nm < 0 ? -1 : 1);

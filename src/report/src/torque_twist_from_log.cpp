@@ -21,14 +21,14 @@ struct Point {
 // travel (a brake only resists motion).
 template <class Visit>
 void scan_points(const std::filesystem::path& log, std::uint64_t records,
-                 const procedures::GearSense& sense, Visit&& visit) {
+                 const metrology::GearSense& sense, Visit&& visit) {
   scan_sample_log(log, 0, records, [&](const storage::SyncSample& s) {
     if (!s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid) ||
         !s.valid(storage::kTorqueValid)) {
       return;
     }
     visit(Point{
-        -sense.transmission_error(s.theta_in_rad, s.theta_out_rad) * procedures::kArcminPerRad,
+        -sense.transmission_error(s.theta_in_rad, s.theta_out_rad) * metrology::kArcminPerRad,
         s.torque_nm, s.torque_nm < 0 ? -1 : 1});
   });
 }
@@ -37,7 +37,7 @@ void scan_points(const std::filesystem::path& log, std::uint64_t records,
 
 std::optional<TorqueTwistCurve> torque_twist_from_log(const std::filesystem::path& log,
                                                       std::uint64_t records,
-                                                      const procedures::GearSense& sense) {
+                                                      const metrology::GearSense& sense) {
   std::size_t n = 0;
   double x_lo = 0, x_hi = 0, y_lo = 0, y_hi = 0;
   scan_points(log, records, sense, [&](const Point& p) {

@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "wavebench/procedures/gear_sense.hpp"
-#include "wavebench/procedures/lost_motion_fit.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
+#include "wavebench/metrology/lost_motion_fit.hpp"
 
 namespace wavebench::report {
 namespace {

@@ -100,7 +100,7 @@ TwinSampleInput twin_input(const storage::SyncSample& s) {
 
 struct MeasuredDriveTwin::Impl {
   model::GearParams params;
-  procedures::GearSense sense;
+  metrology::GearSense sense;
   TwinSolverOptions options;
   model::solver::DormandPrince45 integrator;
   // The points not yet taken (take_settled_points): points[k] is point points_front + k.
@@ -128,7 +128,7 @@ struct MeasuredDriveTwin::Impl {
   std::uint64_t predicted = 0;
   std::int64_t steps = 0;
 
-  Impl(const model::GearParams& gear, const procedures::GearSense& s, TwinSolverOptions o)
+  Impl(const model::GearParams& gear, const metrology::GearSense& s, TwinSolverOptions o)
       : params(measured_drive_params(gear)),
         sense(s),
         options(o),
@@ -364,7 +364,7 @@ struct MeasuredDriveTwin::Impl {
 };
 
 MeasuredDriveTwin::MeasuredDriveTwin(const model::GearParams& gear,
-                                     const procedures::GearSense& sense,
+                                     const metrology::GearSense& sense,
                                      TwinSolverOptions options) {
   sense.validate();
   impl_ = std::make_unique<Impl>(gear, sense, options);
@@ -420,7 +420,7 @@ std::int64_t MeasuredDriveTwin::solver_steps() const {
 }
 
 std::vector<TwinPoint> replay_twin(const model::GearParams& gear,
-                                   const procedures::GearSense& sense,
+                                   const metrology::GearSense& sense,
                                    std::span<const storage::SyncSample> samples,
                                    TwinSolverOptions options) {
   MeasuredDriveTwin twin(gear, sense, options);

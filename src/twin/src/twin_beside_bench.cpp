@@ -44,7 +44,7 @@ double LagHistogram::percentile(double q) const {
 }
 
 TwinBesideBench::TwinBesideBench(const model::GearParams& twin_gear,
-                                 const procedures::GearSense& sense, TwinBesideBenchOptions options)
+                                 const metrology::GearSense& sense, TwinBesideBenchOptions options)
     : twin_(twin_gear, sense, options.solver),
       on_flag_(std::move(options.on_flag)),
       on_point_(std::move(options.on_point)),
@@ -230,7 +230,7 @@ nlohmann::json to_json(const TwinRunReport& r) {
   if (!r.error.empty()) j["error"] = r.error;
   j["points"] = r.points;
   if (r.residual) {
-    j["residual"] = procedures::to_json(*r.residual);
+    j["residual"] = metrology::to_json(*r.residual);
     j["residual"]["noise_floor_arcsec"] = r.noise_floor_arcsec;
     if (r.noise_floor_arcsec > 0) {
       j["residual"]["rms_over_noise_floor"] = r.residual->rms_arcsec / r.noise_floor_arcsec;

@@ -19,9 +19,9 @@
 namespace wavebench::twin {
 namespace {
 
-using procedures::HarmonicOrder;
-using procedures::kArcminPerRad;
-using procedures::kArcsecPerRad;
+using metrology::HarmonicOrder;
+using metrology::kArcminPerRad;
+using metrology::kArcsecPerRad;
 
 // The nominal terms' orders, then the standard families of model.md §3, each once.
 std::vector<HarmonicOrder> candidate_orders(const model::GearParams& g,
@@ -48,7 +48,7 @@ std::vector<HarmonicOrder> candidate_orders(const model::GearParams& g,
 }
 
 // Adds δ·sin(u + δφ) to the first term of the same orders, or appends a new term.
-void merge_harmonic(std::vector<model::TeTerm>& terms, const procedures::FittedHarmonic& h) {
+void merge_harmonic(std::vector<model::TeTerm>& terms, const metrology::FittedHarmonic& h) {
   for (auto& t : terms) {
     if (t.order_input != h.order_input || t.order_output != h.order_output) continue;
     const double s =
@@ -132,13 +132,13 @@ double correlation(const std::vector<double>& a, const std::vector<double>& b) {
 struct Replay {
   TwinSolverOptions solver;
   model::GearParams params;
-  procedures::TwinResidual residual;
+  metrology::TwinResidual residual;
   double noise_floor_arcsec = 0;
 };
 
 using PointSink = std::function<void(const TwinPoint&)>;
 
-Replay replay(const model::GearParams& params, const procedures::GearSense& sense,
+Replay replay(const model::GearParams& params, const metrology::GearSense& sense,
               std::span<const storage::SyncSample> samples, const TwinSolverOptions& solver,
               const PointSink& on_point = {}) {
   MeasuredDriveTwin twin(params, sense, solver);
@@ -169,7 +169,7 @@ struct FitRows {
 
 // Rows from a replay's points with `params` (the replayed ones).
 PointSink row_sink(FitRows& rows, const model::GearParams& params,
-                   const procedures::GearSense& sense) {
+                   const metrology::GearSense& sense) {
   const double half = 0.5 * params.backlash.total_rad;
   std::shared_ptr<model::ElasticStiffness> law;
   if (model::is_elastic(params.stiffness.law)) {
@@ -194,7 +194,7 @@ PointSink row_sink(FitRows& rows, const model::GearParams& params,
 }
 
 // Every run replayed; with `rows`, their fit rows too (run after run).
-std::vector<Replay> replay_all(const model::GearParams& params, const procedures::GearSense& sense,
+std::vector<Replay> replay_all(const model::GearParams& params, const metrology::GearSense& sense,
                                std::span<const std::span<const storage::SyncSample>> runs,
                                const TwinSolverOptions& solver, FitRows* rows = nullptr) {
   std::vector<Replay> out;
@@ -261,7 +261,7 @@ struct JointFit {
 // (`before`) and stays the calibration when nothing beats it; otherwise the start is the
 // baseline (a unit's twin over several runs: the replays cost what the runs measured).
 JointFit fit_jointly(const model::GearParams& nominal, const model::GearParams& start,
-                     const std::string& start_fitted, const procedures::GearSense& sense,
+                     const std::string& start_fitted, const metrology::GearSense& sense,
                      std::span<const std::span<const storage::SyncSample>> runs,
                      const TwinCalibrationOptions& options, bool against_nominal) {
   JointFit out;
@@ -347,7 +347,7 @@ JointFit fit_jointly(const model::GearParams& nominal, const model::GearParams& 
     if (percentile_span(speed, 0.02) >= options.min_speed_span_rad_s && apart_from_flank) {
       add_scaled(speed, "input_latch_delay");
     }
-    const auto fit = procedures::fit_te_harmonics(th1, th2, target, orders, regressors);
+    const auto fit = metrology::fit_te_harmonics(th1, th2, target, orders, regressors);
     for (const auto& h : fit.fit.harmonics) merge_harmonic(params.te_terms, h);
     merge_offset(params.te_terms, fit.fit.offset_rad);
     for (std::size_t r = 0; r < names.size(); ++r) {
@@ -405,15 +405,15 @@ double estimate_te_noise_floor_arcsec(std::span<const TwinPoint> points) {
   return sum.noise_floor_arcsec();
 }
 
-TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
+TwinCalibration calibrate_twin(const model::GearParams& nominal, const metrology::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
-                               const procedures::StaticTeResult* static_run,
+                               const metrology::StaticTeResult* static_run,
                                const TwinCalibrationOptions& options) {
   model::GearParams start = nominal;
   std::string start_fitted;
   if (static_run != nullptr) {
     try {
-      const auto e = procedures::estimate_stiffness_backlash(*static_run);
+      const auto e = metrology::estimate_stiffness_backlash(*static_run);
       const double x = nominal_twist(start.stiffness, std::abs(e.load_nm));
       const double factor = x > 0 && std::abs(e.shift_rad) > 0 ? x / std::abs(e.shift_rad) : 0;
       // Only a plausible estimate seeds the fit (a factor of five either way at most).
@@ -447,7 +447,7 @@ TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedure
 }
 
 UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
-                                        const procedures::GearSense& sense,
+                                        const metrology::GearSense& sense,
                                         std::span<const UnitRunSamples> runs,
                                         const UnitTwinStart& start_from,
                                         const TwinCalibrationOptions& options) {
@@ -496,7 +496,7 @@ UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
 }
 
 std::uint64_t write_replay_csv(const std::filesystem::path& file, const model::GearParams& gear,
-                               const procedures::GearSense& sense,
+                               const metrology::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
                                const TwinSolverOptions& solver) {
   TwinCsvWriter csv(file);
@@ -579,8 +579,8 @@ nlohmann::json to_json(const UnitTwinCalibration& c) {
 }
 
 nlohmann::json to_json(const TwinCalibration& c) {
-  return {{"residual_before", procedures::to_json(c.before)},
-          {"residual_after", procedures::to_json(c.after)},
+  return {{"residual_before", metrology::to_json(c.before)},
+          {"residual_after", metrology::to_json(c.after)},
           {"rms_before_arcsec", c.before.rms_arcsec},
           {"rms_after_arcsec", c.after.rms_arcsec},
           {"noise_floor_arcsec", c.noise_floor_arcsec},

@@ -4,7 +4,7 @@
 #include <cstdio>
 #include <string>
 
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
 
 namespace wavebench::twin {
 
@@ -33,10 +33,10 @@ void TwinOverlaySum::add(const TwinPoint& p) {
 double TwinOverlaySum::noise_floor_arcsec() const {
   return thirds_ == 0 ? 0.0
                       : std::sqrt(third_squares_ / (20.0 * static_cast<double>(thirds_))) *
-                            procedures::kArcsecPerRad;
+                            metrology::kArcsecPerRad;
 }
 
-procedures::TwinResidual twin_overlay_residual(std::span<const TwinPoint> points) {
+metrology::TwinResidual twin_overlay_residual(std::span<const TwinPoint> points) {
   TwinOverlaySum sum;
   for (const auto& p : points) sum.add(p);
   return sum.residual();
@@ -51,7 +51,7 @@ void TwinCsvWriter::add(const TwinPoint& p) {
   int n = std::snprintf(row, 64, std::abs(p.t_s) < 1e12 ? "%.6f,%llu," : "%.6e,%llu,", p.t_s,
                         static_cast<unsigned long long>(p.index));
   const auto field = [&](double rad, char end) {
-    const double arcsec = rad * procedures::kArcsecPerRad;
+    const double arcsec = rad * metrology::kArcsecPerRad;
     if (std::isfinite(arcsec)) {
       // %.4f of a value beyond 1e12 would not fit the row: such a value is written in %e.
       n += std::snprintf(row + n, 48, std::abs(arcsec) < 1e12 ? "%.4f" : "%.6e", arcsec);

@@ -122,7 +122,7 @@ std::optional<UnitTwin> load_unit_twin(const std::filesystem::path& store_root,
 
 std::optional<UnitTwinUpdate> update_unit_twin(
     const storage::RunStore& store, const std::string& serial, const model::GearParams& nominal,
-    const procedures::GearSense& sense, const std::string& bench_name,
+    const metrology::GearSense& sense, const std::string& bench_name,
     const CalibratedRun& just_calibrated, const TwinCalibrationOptions& options) {
   const auto dir = unit_twin_dir(store.root(), serial);
   // The newest complete run of each procedure of the unit.

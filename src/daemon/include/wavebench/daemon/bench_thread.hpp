@@ -22,7 +22,7 @@
 #include "wavebench/daemon/manual_session.hpp"
 #include "wavebench/daemon/post_run_queue.hpp"
 #include "wavebench/daemon/run_launcher.hpp"
-#include "wavebench/runs/settled_point.hpp"
+#include "wavebench/procedures/settled_point.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::daemon {
@@ -57,7 +57,7 @@ struct ActiveRun {
   // A static run's settled positions so far (the console's TE-against-output-angle view); the
   // newest kMaxPoints.
   static constexpr std::size_t kMaxPoints = 2000;
-  std::deque<runs::SettledPoint> points;
+  std::deque<procedures::SettledPoint> points;
 };
 
 // The newest run started: a new run replaces the previous one's verdict at once.
@@ -115,7 +115,7 @@ class BenchThread {
   void start();
   // From any thread. Queues the run and waits (up to `wait`) until the executor has named it
   // or refused it.
-  StartOutcome start_run(runs::RunRequest request,
+  StartOutcome start_run(procedures::RunRequest request,
                          std::chrono::milliseconds wait = std::chrono::seconds(30));
   // Trips the bench with `reason` when a run is active; returns whether one was.
   bool abort_run(const std::string& reason);
@@ -164,7 +164,7 @@ class BenchThread {
   // inactive; a fault with any other reason (a real trip came first) stays.
   void settle_operator_stop();
   void refresh_stats_on_bench_thread();
-  void post_run_done(const std::string& run_id, const runs::RunOutcome* outcome,
+  void post_run_done(const std::string& run_id, const procedures::RunOutcome* outcome,
                      const std::string& error);
 
   BenchFactory factory_;

@@ -134,7 +134,7 @@ class DaemonApi {
   static constexpr std::size_t kMaxDownloads = 2;
   static constexpr std::size_t kMaxLoginBody = 4096;
 
-  // `specs_dir`: the product specs a run may name (empty: runs::default_specs_dir()).
+  // `specs_dir`: the product specs a run may name (empty: procedures::default_specs_dir()).
   DaemonApi(BenchThread& bench, storage::RunStore& store, LiveSampleBuffer& live, std::string token,
             HostCheck host_check = HostCheck(), std::filesystem::path specs_dir = {},
             std::shared_ptr<const ConsoleFiles> console = nullptr, SoftwareIdentity software = {});

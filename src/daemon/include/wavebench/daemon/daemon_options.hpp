@@ -26,7 +26,7 @@ struct DaemonOptions {
   ListenAddress listen;
   std::filesystem::path token_file;  // empty: default_token_file()
   std::filesystem::path log_dir;     // empty: <runs_dir>/logs
-  std::filesystem::path specs_dir;   // empty: runs::default_specs_dir()
+  std::filesystem::path specs_dir;   // empty: procedures::default_specs_dir()
   bool verbose = false;
   // Listening beyond loopback exposes the bench to the network: only when asked for.
   bool allow_remote = false;

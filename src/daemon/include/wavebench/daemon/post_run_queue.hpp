@@ -31,7 +31,7 @@ class PostRunQueue {
  public:
   // Called on the worker when a run's work has ended: its outcome, or the text of what the
   // work threw.
-  using Done = std::function<void(const std::string& run_id, const runs::RunOutcome* outcome,
+  using Done = std::function<void(const std::string& run_id, const procedures::RunOutcome* outcome,
                                   const std::string& error)>;
 
   explicit PostRunQueue(Done done);

@@ -14,14 +14,14 @@ class PublishingRunLauncher : public RunLauncher {
  public:
   PublishingRunLauncher(std::unique_ptr<RunLauncher> inner, fleet::Outbox& outbox);
 
-  runs::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
-                          const runs::RunRequest& request,
-                          const runs::ProgressSink& progress) override;
+  procedures::RunOutcome launch(bench::Bench& bench, storage::RunStore& store,
+                          const procedures::RunRequest& request,
+                          const procedures::ProgressSink& progress) override;
   // The run goes to the outbox when its post-run work has finished it.
   RecordedLaunch record(bench::Bench& bench, storage::RunStore& store,
-                        const runs::RunRequest& request,
-                        const runs::ProgressSink& progress) override;
-  void check(const runs::RunRequest& request, const bench::BenchDescription& bench,
+                        const procedures::RunRequest& request,
+                        const procedures::ProgressSink& progress) override;
+  void check(const procedures::RunRequest& request, const bench::BenchDescription& bench,
              std::size_t extra_channels, const std::filesystem::path& runs_root) const override;
 
  private:

@@ -1,6 +1,6 @@
 #pragma once
 // The TE spectrum of a record fed one sample at a time. A record of up to `segment` samples is
-// transformed whole (procedures::spectrum_on_timestamps, every bin of the record); a longer one
+// transformed whole (metrology::spectrum_on_timestamps, every bin of the record); a longer one
 // is averaged over segments of `segment` samples with half of each overlapping the next (Welch:
 // the power of each bin averaged, so a steady line reads its amplitude), keeping one segment in
 // memory however long the record.

@@ -79,7 +79,7 @@ DynamicPlotData reduce_dynamic_trace(const DynamicTrace& trace, double ratio, st
 // give none. Throws as storage::read_sample_log_page.
 std::optional<DynamicPlotData> dynamic_plot_data(const std::filesystem::path& log,
                                                  const SampleLogFacts& facts,
-                                                 const procedures::GearSense& sense,
+                                                 const metrology::GearSense& sense,
                                                  std::size_t columns,
                                                  analysis::SpectrumAnalyser& analyser);
 

@@ -19,7 +19,7 @@
 #include <string>
 #include <vector>
 
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 
 namespace wavebench::report {
@@ -51,7 +51,7 @@ struct SampleLogFacts {
 class GearSenseFit {
  public:
   void add(const storage::SyncSample& s);
-  std::optional<procedures::GearSense> result() const;
+  std::optional<metrology::GearSense> result() const;
 
  private:
   double n_ = 0, sx_ = 0, sy_ = 0, sxx_ = 0, sxy_ = 0, lo_ = 0, hi_ = 0;
@@ -65,7 +65,7 @@ struct RunFolder {
   std::optional<TwinTrace> twin;
   // The gear sense from results.json ("gear" or any object with "ratio"), or estimated from
   // the samples (θ_in against θ_out) when the results do not carry it.
-  std::optional<procedures::GearSense> sense;
+  std::optional<metrology::GearSense> sense;
   bool sense_estimated = false;
   std::vector<std::string> notes;  // what was missing or unreadable, shown on the report
 
@@ -95,7 +95,7 @@ const nlohmann::json* twin_section(const nlohmann::json& results);  // "twin": {
 std::optional<double> number(const nlohmann::json& object, const std::string& key);
 
 // GearSenseFit over a record in memory.
-std::optional<procedures::GearSense> estimate_gear_sense(
+std::optional<metrology::GearSense> estimate_gear_sense(
     const std::vector<storage::SyncSample>& samples);
 
 }  // namespace wavebench::report

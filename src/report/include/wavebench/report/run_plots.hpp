@@ -27,7 +27,7 @@ struct DynamicTrace {
 
 // nullopt when fewer than 16 samples carry both angles or the input never turns steadily.
 std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>& samples,
-                                          const procedures::GearSense& sense);
+                                          const metrology::GearSense& sense);
 // The analysed trace the dynamic results carry ("trace": time_s, output_angle_deg,
 // te_arcsec), nullopt when absent or malformed.
 std::optional<DynamicTrace> dynamic_trace(const nlohmann::json& dynamic);
@@ -43,7 +43,7 @@ struct TorqueTwistCurve {
 };
 std::optional<TorqueTwistCurve> torque_twist_from_results(const nlohmann::json& fit);
 std::optional<TorqueTwistCurve> torque_twist_from_samples(
-    const std::vector<storage::SyncSample>& samples, const procedures::GearSense& sense);
+    const std::vector<storage::SyncSample>& samples, const metrology::GearSense& sense);
 // The same from a sample log's records [0, records), read page by page: every point while
 // there are at most kTorqueTwistPoints, else the first point of each occupied cell of a grid
 // over the curve's extent per direction of travel (a scatter shows no more), so the memory
@@ -51,7 +51,7 @@ std::optional<TorqueTwistCurve> torque_twist_from_samples(
 inline constexpr std::size_t kTorqueTwistPoints = 20000;
 std::optional<TorqueTwistCurve> torque_twist_from_log(const std::filesystem::path& log,
                                                       std::uint64_t records,
-                                                      const procedures::GearSense& sense);
+                                                      const metrology::GearSense& sense);
 
 // `passes`: results.json "static" list. One row per load, forward and reverse in each.
 std::optional<Figure> static_te_figure(const nlohmann::json& passes);

@@ -2,7 +2,7 @@
 // The report of a bench run (issue #5): report.html and its PNG plots, written from what the
 // run folder holds (see run_folder.hpp), and a session page that gathers several runs.
 //
-// Usage (e.g. at the end of runs::execute_run, after results.json, status.json and twin.csv):
+// Usage (e.g. at the end of procedures::execute_run, after results.json, status.json and twin.csv):
 //   report::write_run_report(run_dir);                 // run_dir/report.html + *.png
 //   report::write_session_report(out, {dir_a, dir_b});  // out/index.html linking each report
 //

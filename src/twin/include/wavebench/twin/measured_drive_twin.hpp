@@ -25,7 +25,7 @@
 #include <vector>
 
 #include "wavebench/model/gear_params.hpp"
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 #include "wavebench/twin/twin_point.hpp"
 
@@ -67,7 +67,7 @@ class MeasuredDriveTwin {
  public:
   // Throws std::invalid_argument when the gear cannot be simulated or its ratio is not the
   // bench's (sense.ratio).
-  MeasuredDriveTwin(const model::GearParams& gear, const procedures::GearSense& sense,
+  MeasuredDriveTwin(const model::GearParams& gear, const metrology::GearSense& sense,
                     TwinSolverOptions options = {});
   ~MeasuredDriveTwin();
   MeasuredDriveTwin(const MeasuredDriveTwin&) = delete;
@@ -98,7 +98,7 @@ class MeasuredDriveTwin {
 
 // The twin over a recorded run, start to end.
 std::vector<TwinPoint> replay_twin(const model::GearParams& gear,
-                                   const procedures::GearSense& sense,
+                                   const metrology::GearSense& sense,
                                    std::span<const storage::SyncSample> samples,
                                    TwinSolverOptions options = {});
 

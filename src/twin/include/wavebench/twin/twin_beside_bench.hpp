@@ -3,7 +3,7 @@
 // the gear model running on its own thread, driven by the measured input angle and load
 // torque (measured_drive_twin.hpp says how and why dynamically).
 //
-// Usage in a run (runs::execute_run):
+// Usage in a run (procedures::execute_run):
 //
 //   twin::TwinBesideBenchOptions options;
 //   options.overlay_csv = run_dir / "twin.csv";  // written as the twin goes
@@ -99,7 +99,7 @@ struct TwinRunReport {
   // Points (one per sample the twin took, index = arrival number, the sample log's index when
   // every sample goes to the log; a dropped sample leaves a gap) and what they add up to.
   std::uint64_t points = 0;
-  std::optional<procedures::TwinResidual> residual;  // with at least 8 overlapping points
+  std::optional<metrology::TwinResidual> residual;  // with at least 8 overlapping points
   double noise_floor_arcsec = 0;                     // TwinOverlaySum::noise_floor_arcsec
   std::uint64_t overlay_rows = 0;                    // written to overlay_csv
   std::string overlay_error;  // twin.csv could not be written (the twin went on)
@@ -116,7 +116,7 @@ struct TwinRunReport {
 
 class TwinBesideBench final : public bench::SampleObserver {
  public:
-  TwinBesideBench(const model::GearParams& twin_gear, const procedures::GearSense& sense,
+  TwinBesideBench(const model::GearParams& twin_gear, const metrology::GearSense& sense,
                   TwinBesideBenchOptions options = {});
   ~TwinBesideBench() override;
   TwinBesideBench(const TwinBesideBench&) = delete;

@@ -1,6 +1,6 @@
 #pragma once
 // Calibrating the twin to a run (bench.md §5): the twin is replayed over the run's samples,
-// and a linear least-squares fit of the residual (procedures::fit_te_harmonics with extra
+// and a linear least-squares fit of the residual (metrology::fit_te_harmonics with extra
 // regressors) corrects, in one solve,
 //   - the TE harmonics on the ordered harmonic basis sin/cos(a·θ1 + b·θ2) (the nominal terms'
 //     orders plus the standard families that the run's angles resolve) and a constant (the
@@ -27,8 +27,8 @@
 #include "wavebench/analysis/amplitude_spectrum.hpp"
 #include "wavebench/model/gear_params.hpp"
 #include "wavebench/model/simulation.hpp"
-#include "wavebench/procedures/static_te_statistics.hpp"
-#include "wavebench/procedures/twin_calibration.hpp"
+#include "wavebench/metrology/static_te_statistics.hpp"
+#include "wavebench/metrology/twin_calibration.hpp"
 #include "wavebench/storage/sync_sample.hpp"
 #include "wavebench/twin/measured_drive_twin.hpp"
 
@@ -42,7 +42,7 @@ inline constexpr std::size_t kMaxCalibrationSamples = 120'000;
 struct TwinCalibrationOptions {
   TwinSolverOptions solver;
   int passes = 2;
-  std::vector<procedures::HarmonicOrder> extra_orders;
+  std::vector<metrology::HarmonicOrder> extra_orders;
   // An order enters the fit only when its phase a·θ1 + b·θ2 sweeps this much over the run.
   double min_phase_span_rad = 6.283185307179586;
   // Backlash is fitted only when each flank holds this fraction of the samples.
@@ -62,14 +62,14 @@ struct TwinCalibrationOptions {
 struct TwinCalibration {
   model::GearParams nominal;
   model::GearParams calibrated;
-  procedures::TwinResidual before;  // nominal twin replayed over the run
-  procedures::TwinResidual after;   // calibrated twin replayed over the same samples
+  metrology::TwinResidual before;  // nominal twin replayed over the run
+  metrology::TwinResidual after;   // calibrated twin replayed over the same samples
   double stiffness_factor = 1;      // calibrated / nominal stiffness
   // The solver options of the calibrated replay, with the fitted input latch delay (a property
   // of the bench's sampling, not of the gear: it is not in the config file).
   TwinSolverOptions solver;
   std::vector<std::string> fitted;  // what the fit changed: te_harmonics, offset, backlash, ...
-  std::vector<procedures::HarmonicOrder> orders;  // the harmonic basis used
+  std::vector<metrology::HarmonicOrder> orders;  // the harmonic basis used
   int passes = 0;
   // The sensors' noise in the measured TE, estimated from the run itself (see
   // estimate_te_noise_floor): what the residual cannot go below.
@@ -90,14 +90,14 @@ double small_twist_stiffness_ratio(const model::GearParams& nominal,
 // twin.csv of `gear` replayed over `samples` (twin_overlay.hpp), e.g. a calibration's
 // (twin-calibrated.csv), written as the replay goes. Returns the rows written.
 std::uint64_t write_replay_csv(const std::filesystem::path& file, const model::GearParams& gear,
-                               const procedures::GearSense& sense,
+                               const metrology::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
                                const TwinSolverOptions& solver);
 
 // Throws std::invalid_argument when fewer samples than unknowns carry a measured TE.
-TwinCalibration calibrate_twin(const model::GearParams& nominal, const procedures::GearSense& sense,
+TwinCalibration calibrate_twin(const model::GearParams& nominal, const metrology::GearSense& sense,
                                std::span<const storage::SyncSample> samples,
-                               const procedures::StaticTeResult* static_run = nullptr,
+                               const metrology::StaticTeResult* static_run = nullptr,
                                const TwinCalibrationOptions& options = {});
 
 // One twin per unit (issue #11): the calibration above over several runs of the same unit in
@@ -120,7 +120,7 @@ struct UnitRunResidual {
   std::string run_id;
   std::string procedure;
   std::size_t samples = 0;
-  procedures::TwinResidual after;  // the unit twin over the run
+  metrology::TwinResidual after;  // the unit twin over the run
   double noise_floor_arcsec = 0;   // estimated from the unit twin's residual
 };
 struct UnitTwinCalibration {
@@ -129,14 +129,14 @@ struct UnitTwinCalibration {
   TwinSolverOptions solver;  // with the fitted input latch delay
   std::vector<UnitRunResidual> runs;
   std::vector<std::string> fitted;
-  std::vector<procedures::HarmonicOrder> orders;
+  std::vector<metrology::HarmonicOrder> orders;
   int passes = 0;
   double stiffness_factor = 1;
 };
 // Throws std::invalid_argument when `runs` is empty, the loop's curve is not one (K ≤ 0,
 // T2 ≤ T1) or fewer samples than unknowns carry a measured TE.
 UnitTwinCalibration calibrate_unit_twin(const model::GearParams& nominal,
-                                        const procedures::GearSense& sense,
+                                        const metrology::GearSense& sense,
                                         std::span<const UnitRunSamples> runs,
                                         const UnitTwinStart& start = {},
                                         const TwinCalibrationOptions& options = {});

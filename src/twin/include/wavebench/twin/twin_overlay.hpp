@@ -9,7 +9,7 @@
 #include <memory>
 #include <span>
 
-#include "wavebench/procedures/twin_calibration.hpp"
+#include "wavebench/metrology/twin_calibration.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/twin/twin_point.hpp"
 
@@ -21,13 +21,13 @@ class TwinOverlaySum {
   void add(const TwinPoint& point);
   std::size_t overlapping() const { return overlapping_; }
   // Throws std::invalid_argument when fewer than 8 points overlap.
-  procedures::TwinResidual residual() const { return residual_.result(); }
+  metrology::TwinResidual residual() const { return residual_.result(); }
   // The white part of the residual from its third differences over consecutive samples
   // (Σ of the squared weights 1, 3, 3, 1 is 20): what no twin can predict [arcsec].
   double noise_floor_arcsec() const;
 
  private:
-  procedures::TwinResidualSum residual_;
+  metrology::TwinResidualSum residual_;
   std::size_t overlapping_ = 0;
   // The last four points' index and residual [rad], for the third differences.
   std::array<std::uint64_t, 4> index_{};
@@ -38,7 +38,7 @@ class TwinOverlaySum {
 };
 
 // Throws std::invalid_argument when fewer than 8 points overlap.
-procedures::TwinResidual twin_overlay_residual(std::span<const TwinPoint> points);
+metrology::TwinResidual twin_overlay_residual(std::span<const TwinPoint> points);
 
 // twin.csv: t,index,measured_te_arcsec,predicted_te_arcsec,residual_arcsec; one row per point,
 // an empty field where a value is missing. Appears whole at commit() (AtomicFileWriter).

@@ -22,7 +22,7 @@
 #include <vector>
 
 #include "wavebench/config/twin_case.hpp"
-#include "wavebench/procedures/gear_sense.hpp"
+#include "wavebench/metrology/gear_sense.hpp"
 #include "wavebench/storage/run_store.hpp"
 #include "wavebench/twin/measured_drive_twin.hpp"
 #include "wavebench/twin/twin_calibrator.hpp"
@@ -73,7 +73,7 @@ struct CalibratedRun {
 // Throws on a fit or write failure (nothing half-written: the files are replaced atomically).
 std::optional<UnitTwinUpdate> update_unit_twin(
     const storage::RunStore& store, const std::string& serial, const model::GearParams& nominal,
-    const procedures::GearSense& sense, const std::string& bench_name,
+    const metrology::GearSense& sense, const std::string& bench_name,
     const CalibratedRun& just_calibrated = {}, const TwinCalibrationOptions& options = {});
 
 }  // namespace wavebench::twin
