@@ -14,7 +14,7 @@ mkdir -p "$state"
 token_file=$state/daemon.token
 wavebenchd=./${WAVEBENCH_BUILD_DIR:-build}/src/daemon/wavebenchd
 
-"$wavebenchd" --config sim --listen "$listen" --runs "$state/runs" --token-file "$token_file" \
+"$wavebenchd" --config simulated --listen "$listen" --runs "$state/runs" --token-file "$token_file" \
   --web-root "./${WAVEBENCH_BUILD_DIR:-build}/web" &
 daemon=$!
 trap 'kill -TERM $daemon 2>/dev/null; wait $daemon' INT TERM EXIT

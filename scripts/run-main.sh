@@ -21,10 +21,10 @@ run_folders() { find "$out" -mindepth 1 -maxdepth 1 -type d -name '[0-9]*' | sor
 
 runs=()
 for procedure in static dynamic lost-motion; do
-  echo "== wavebench run $procedure --bench sim --out $out"
+  echo "== wavebench run $procedure --bench simulated --out $out"
   before=$(run_folders)
   status=0
-  "$wavebench" run "$procedure" --bench sim --out "$out" || status=$?
+  "$wavebench" run "$procedure" --bench simulated --out "$out" || status=$?
   new=$(comm -13 <(echo "$before") <(run_folders))
   if [[ -z "$new" ]]; then
     echo "run-main: wavebench run $procedure wrote no run folder (exit $status)" >&2
@@ -42,7 +42,7 @@ echo "== session report"
 if [[ "${WAVEBENCH_SKIP_TWIN_CASE:-0}" != 1 ]]; then
   echo
   echo "== the twin's reference case (XB-80-134H)"
-  "$wavebench" sim configs/twin/xb-80-134h.yaml --out out/xb-80-134h --quiet
+  "$wavebench" twin configs/twin/xb-80-134h.yaml --out out/xb-80-134h --quiet
   echo "twin case: out/xb-80-134h/"
 fi
 echo

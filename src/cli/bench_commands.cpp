@@ -17,7 +17,7 @@ namespace wavebench::cli {
 namespace {
 
 struct CheckArgs {
-  std::string config = "sim";
+  std::string config = "simulated";
   bool json = false;
   bool motion = true;
 };

@@ -1,8 +1,8 @@
-// `wavebench run static|dynamic|lost-motion|torsional --bench sim|CONFIG [--out DIR] ...`: one
-// procedure without a daemon. Builds the bench (the in-process simulated bench for "sim"), records
-// the run in the store under --out, prints the summary table and where results and report are. A
-// bad option or config, or a request the bench or the disk cannot take: a message naming the key,
-// the value and what was expected, exit 2, nothing written.
+// `wavebench run static|dynamic|lost-motion|torsional --bench simulated|CONFIG [--out DIR] ...`:
+// one procedure without a daemon. Builds the bench (the in-process simulated bench for
+// "simulated"), records the run in the store under --out, prints the summary table and where
+// results and report are. A bad option or config, or a request the bench or the disk cannot take: a
+// message naming the key, the value and what was expected, exit 2, nothing written.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -19,12 +19,12 @@
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/fleet/run_summary.hpp"
 #include "wavebench/fleet/sqlite_results_store.hpp"
-#include "wavebench/report/run_report.hpp"
 #include "wavebench/procedures/procedure_catalogue.hpp"
 #include "wavebench/procedures/procedure_options_file.hpp"
 #include "wavebench/procedures/run_executor.hpp"
 #include "wavebench/procedures/run_request_check.hpp"
 #include "wavebench/procedures/software_version.hpp"
+#include "wavebench/report/run_report.hpp"
 #include "wavebench/storage/run_store.hpp"
 
 namespace wavebench::cli {
@@ -34,7 +34,8 @@ namespace {
 // every run, so that `wavebench fleet --runs DIR` and a daemon's fleet page see runs made
 // without a daemon too. Idempotent by (bench, run id): a daemon started on the folder later
 // finds it there and adds nothing. A failure here costs the summary only, never the run.
-void summarise_into_own_store(const storage::RunStore& store, const procedures::RunOutcome& outcome) {
+void summarise_into_own_store(const storage::RunStore& store,
+                              const procedures::RunOutcome& outcome) {
   try {
     const auto record = store.find_run(outcome.run_id);
     if (!record) return;
@@ -49,7 +50,7 @@ void summarise_into_own_store(const storage::RunStore& store, const procedures::
 
 struct RunArgs {
   std::string procedure;
-  std::string bench = "sim";
+  std::string bench = "simulated";
   std::string out = "runs";
   std::optional<int> positions;
   std::vector<double> loads;
@@ -205,8 +206,8 @@ int run_procedure(const RunArgs& a) {
   RunProgressLine line(!a.quiet);
   procedures::RunOutcome outcome;
   try {
-    outcome = procedures::execute_run(*bench, *store, request,
-                                [&line](const procedures::RunProgress& p) { line.update(p); });
+    outcome = procedures::execute_run(
+        *bench, *store, request, [&line](const procedures::RunProgress& p) { line.update(p); });
   } catch (const std::exception& e) {
     line.finish();
     bench->disconnect();

@@ -1,4 +1,4 @@
-// `wavebench sim CONFIG --out DIR`: run a twin case, analyse it, write CSV, JSON and plots.
+// `wavebench twin CONFIG --out DIR`: run a twin case, analyse it, write CSV, JSON and plots.
 // Output goes to a temporary sibling of DIR that is renamed into place at the end, so DIR is
 // either complete or absent; a bad config writes nothing at all. DIR must be new, empty or an
 // earlier sim's output (sim_output_folder.hpp); a signal removes the temporary folder.
@@ -20,6 +20,7 @@
 #include "wavebench/analysis/twin_analysis.hpp"
 #include "wavebench/config/config_error.hpp"
 #include "wavebench/config/twin_case.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/report/timeseries_csv.hpp"
 #include "wavebench/report/twin_plots.hpp"
 
@@ -27,7 +28,6 @@ namespace wavebench::cli {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
 constexpr double kRpmPerRadS = 60.0 / (2.0 * std::numbers::pi);
 
 struct SimArgs {
@@ -117,12 +117,12 @@ std::vector<report::PortraitPanel> portrait_panels(const model::SampledResponse&
   const std::size_t n = r.t.size();
   for (std::size_t i = first; i < n; ++i) {
     if (i < r.twist.size() && i < r.twist_rate.size()) {
-      twist.x.push_back(r.twist[i] * kArcsecPerRad);
-      twist.v.push_back(r.twist_rate[i] * kArcsecPerRad);
+      twist.x.push_back(r.twist[i] * model::kArcsecPerRad);
+      twist.v.push_back(r.twist_rate[i] * model::kArcsecPerRad);
     }
     if (i < r.theta2_dev.size() && i < r.omega2.size()) {
-      output.x.push_back(r.theta2_dev[i] * kArcsecPerRad);
-      output.v.push_back((r.omega2[i] - mean_w2) * kArcsecPerRad);
+      output.x.push_back(r.theta2_dev[i] * model::kArcsecPerRad);
+      output.v.push_back((r.omega2[i] - mean_w2) * model::kArcsecPerRad);
     }
   }
   return {twist, output};
@@ -151,8 +151,8 @@ void write_plots(const fs::path& dir, const config::TwinCase& twin,
 
   std::vector<double> px, pv;
   for (const auto& p : a.poincare.points) {
-    px.push_back(p.x * kArcsecPerRad);
-    pv.push_back(p.v * kArcsecPerRad);
+    px.push_back(p.x * model::kArcsecPerRad);
+    pv.push_back(p.v * model::kArcsecPerRad);
   }
   report::poincare_figure(
       px, pv, "twist [arcsec]", "twist rate [arcsec/s]",
@@ -168,7 +168,7 @@ void write_plots(const fs::path& dir, const config::TwinCase& twin,
         b.speed_rpm.push_back(p.speed * kRpmPerRadS);
         b.amplitude.push_back(p.amplitude);
         std::vector<double> vals;
-        for (const double d : p.poincare_x) vals.push_back(d * kArcsecPerRad);
+        for (const double d : p.poincare_x) vals.push_back(d * model::kArcsecPerRad);
         b.section_values.push_back(vals);
       }
       return b;
@@ -238,13 +238,13 @@ int run_sim(const SimArgs& args) {
   try {
     twin = config::load_twin_case(args.config);
   } catch (const config::ConfigError& e) {
-    std::cerr << "wavebench sim: " << e.what() << "\n";
+    std::cerr << "wavebench twin: " << e.what() << "\n";
     return 2;
   }
   if (args.t_end) {
     if (!(std::isfinite(*args.t_end) && *args.t_end >= config::kMinTwinSimulatedS &&
           *args.t_end <= config::kMaxTwinSimulatedS)) {
-      std::cerr << "wavebench sim: --t-end: got '" << *args.t_end
+      std::cerr << "wavebench twin: --t-end: got '" << *args.t_end
                 << "', expected a time in seconds in [" << config::kMinTwinSimulatedS << ", "
                 << config::kMaxTwinSimulatedS << "]\n";
       return 2;
@@ -254,7 +254,7 @@ int run_sim(const SimArgs& args) {
       // A short trial run keeps half of itself rather than nothing.
       twin.solver.transient = 0.5 * twin.solver.t_end;
       if (!args.quiet) {
-        std::cerr << "wavebench sim: transient shortened to " << twin.solver.transient
+        std::cerr << "wavebench twin: transient shortened to " << twin.solver.transient
                   << " s to fit --t-end\n";
       }
     }
@@ -265,14 +265,14 @@ int run_sim(const SimArgs& args) {
     const double sweep_time = 2.0 * sw.steps * (sw.settle_time + sw.record_time);
     if (sweep_time > 4 * *args.t_end) {
       twin.analysis.sweep.enabled = false;
-      if (!args.quiet) std::cerr << "wavebench sim: speed sweep skipped for the short run\n";
+      if (!args.quiet) std::cerr << "wavebench twin: speed sweep skipped for the short run\n";
     }
   }
   if (args.t_end) {
     try {
       config::check_twin_run_budget(twin, "--t-end");
     } catch (const config::ConfigError& e) {
-      std::cerr << "wavebench sim: " << e.what() << "\n";
+      std::cerr << "wavebench twin: " << e.what() << "\n";
       return 2;
     }
   }
@@ -280,8 +280,8 @@ int run_sim(const SimArgs& args) {
   fs::path out = fs::absolute(fs::path(args.out)).lexically_normal();
   if (out.filename().empty()) out = out.parent_path();  // "dir/" names dir
   if (const auto refusal = sim_output_refusal(out)) {
-    std::cerr << "wavebench sim: --out: got '" << args.out << "', expected a new folder, an "
-              << "empty one or an earlier wavebench sim output: " << *refusal << "\n";
+    std::cerr << "wavebench twin: --out: got '" << args.out << "', expected a new folder, an "
+              << "empty one or an earlier wavebench twin output: " << *refusal << "\n";
     return 2;
   }
   remove_stale_sim_temp_folders(out);
@@ -298,7 +298,7 @@ int run_sim(const SimArgs& args) {
     try {
       config::check_finite_response(result.response);
     } catch (const config::ConfigError& e) {
-      std::cerr << "wavebench sim: " << e.with_source(args.config).what() << "\n";
+      std::cerr << "wavebench twin: " << e.with_source(args.config).what() << "\n";
       return 2;
     }
     // A sweep in the analysis simulates again, silently, but still stops on a signal.
@@ -334,12 +334,12 @@ int run_sim(const SimArgs& args) {
     std::printf("  written: %s\n", out.c_str());
   } catch (const StopRequested&) {
     remove_sim_output(tmp);
-    std::cerr << "\nwavebench sim: stopped by a signal; " << out.string() << " left as it was\n";
+    std::cerr << "\nwavebench twin: stopped by a signal; " << out.string() << " left as it was\n";
     stop.reraise();
   } catch (const std::exception& e) {
     // Also std::bad_alloc: the budgets should make it impossible, but never leave a temp folder.
     remove_sim_output(tmp);
-    std::cerr << "wavebench sim: " << e.what() << "\n";
+    std::cerr << "wavebench twin: " << e.what() << "\n";
     return 1;
   }
   return 0;
@@ -349,7 +349,9 @@ int run_sim(const SimArgs& args) {
 
 void register_sim_commands(CLI::App& app, ExitStatus& status) {
   auto args = std::make_shared<SimArgs>();
-  CLI::App* sim = app.add_subcommand("sim", "Run a digital-twin case and analyse it");
+  // `sim` is the name of the release before (issue #23): an alias for one more release.
+  CLI::App* sim = app.add_subcommand("twin", "Run a digital-twin case and analyse it");
+  sim->alias("sim");
   sim->add_option("config", args->config, "Twin-case YAML (configs/twin/*.yaml)")->required();
   sim->add_option("--out", args->out, "Directory for timeseries.csv, summary.json and plots")
       ->required();

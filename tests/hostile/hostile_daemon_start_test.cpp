@@ -33,7 +33,7 @@ struct Exit {
 };
 
 Exit run_daemon(const std::vector<std::string>& args, const fs::path& dir) {
-  std::vector<std::string> argv = {WAVEBENCHD_PATH, "--config", "sim"};
+  std::vector<std::string> argv = {WAVEBENCHD_PATH, "--config", "simulated"};
   argv.insert(argv.end(), args.begin(), args.end());
   DaemonProcess p(argv, dir / "stderr.txt");
   // A daemon that wrongly starts is stopped: the port line means it listened.

@@ -1,5 +1,5 @@
-// `wavebench sim` as a user runs it: files, JSON keys, the physics of the largest line, and
-// that a bad config writes nothing and exits 2.
+// `wavebench twin` (and its old name `sim`) as a user runs it: files, JSON keys, the physics of the
+// largest line, and that a bad config writes nothing and exits 2.
 #include <gtest/gtest.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -38,7 +38,7 @@ class SimCli : public ::testing::Test {
 
 TEST_F(SimCli, ShortXb80RunWritesEveryFileWithTheSummaryKeys) {
   const fs::path out = dir_ / "xb";
-  const CliRun r = run_cli("sim '" + (kConfigs / "xb-80-134h.yaml").string() + "' --out '" +
+  const CliRun r = run_cli("twin '" + (kConfigs / "xb-80-134h.yaml").string() + "' --out '" +
                                out.string() + "' --t-end 0.4 --quiet",
                            dir_ / "log.txt");
   ASSERT_EQ(r.exit_code, 0) << r.output;
@@ -134,7 +134,7 @@ namespace {
 TEST_F(SimCli, FullXb80RunKeepsTheSeedRanking) {
   const fs::path out = dir_ / "xb";
   const CliRun r = run_cli(
-      "sim '" + (kConfigs / "xb-80-134h.yaml").string() + "' --out '" + out.string() + "' --quiet",
+      "twin '" + (kConfigs / "xb-80-134h.yaml").string() + "' --out '" + out.string() + "' --quiet",
       dir_ / "log.txt");
   ASSERT_EQ(r.exit_code, 0) << r.output;
   std::ifstream js(out / "summary.json");

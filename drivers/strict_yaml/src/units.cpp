@@ -6,15 +6,13 @@
 #include <optional>
 #include <utility>
 
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/strict_yaml/strict_yaml.hpp"
 
 namespace wavebench::strict_yaml {
 namespace {
 
 constexpr double kPi = std::numbers::pi;
-constexpr double kDeg = kPi / 180.0;
-constexpr double kArcmin = kDeg / 60.0;
-constexpr double kArcsec = kArcmin / 60.0;
 constexpr double kRev = 2.0 * kPi;
 
 struct Unit {
@@ -50,15 +48,15 @@ const std::vector<DimensionInfo>& table() {
        {{"rad", 1},
         {"mrad", 1e-3},
         {"urad", 1e-6},
-        {"deg", kDeg},
-        {"arcmin", kArcmin},
-        {"arcsec", kArcsec},
+        {"deg", model::kRadPerDeg},
+        {"arcmin", model::kRadPerArcmin},
+        {"arcsec", model::kRadPerArcsec},
         {"rev", kRev}},
        {1e9, "1e9 rad"}},  // about 1.6e8 turns: more than any trace or run turns
       {Dimension::kAngularSpeed,
        "an angular speed",
        {{"rad/s", 1},
-        {"deg/s", kDeg},
+        {"deg/s", model::kRadPerDeg},
         {"rpm", kRev / 60.0},
         {"rev/min", kRev / 60.0},
         {"rev/s", kRev},
@@ -77,19 +75,20 @@ const std::vector<DimensionInfo>& table() {
        {{"N*m/rad", 1},
         {"Nm/rad", 1},
         {"kN*m/rad", 1e3},
-        {"N*m/deg", 1 / kDeg},
-        {"N*m/arcmin", 1 / kArcmin},
-        {"Nm/arcmin", 1 / kArcmin},
-        {"N*m/arcsec", 1 / kArcsec},
-        {"Nm/arcsec", 1 / kArcsec}},
+        {"N*m/deg", 1 / model::kRadPerDeg},
+        {"N*m/arcmin", 1 / model::kRadPerArcmin},
+        {"Nm/arcmin", 1 / model::kRadPerArcmin},
+        {"N*m/arcsec", 1 / model::kRadPerArcsec},
+        {"Nm/arcsec", 1 / model::kRadPerArcsec}},
        {1e10, "1e10 N*m/rad"}},  // far stiffer than any gear; stiffer overflows the twin
       {Dimension::kQuadraticStiffness,
        "a quadratic stiffness coefficient",
-       {{"N*m/rad^2", 1}, {"N*m/arcsec^2", 1 / (kArcsec * kArcsec)}},
+       {{"N*m/rad^2", 1}, {"N*m/arcsec^2", 1 / (model::kRadPerArcsec * model::kRadPerArcsec)}},
        {1e16, "1e16 N*m/rad^2"}},  // k2 at a 1e-3 rad twist below 1e10 N*m/rad
       {Dimension::kCubicStiffness,
        "a cubic stiffness coefficient",
-       {{"N*m/rad^3", 1}, {"N*m/arcsec^3", 1 / (kArcsec * kArcsec * kArcsec)}},
+       {{"N*m/rad^3", 1},
+        {"N*m/arcsec^3", 1 / (model::kRadPerArcsec * model::kRadPerArcsec * model::kRadPerArcsec)}},
        {1e22, "1e22 N*m/rad^3"}},  // k3 at a 1e-3 rad twist below 1e10 N*m/rad
       {Dimension::kInertia,
        "a moment of inertia",

@@ -5,12 +5,11 @@
 #include <stdexcept>
 #include <string>
 
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/model/sinusoid.hpp"
 
 namespace wavebench::model {
 namespace {
-
-constexpr double kArcsec = 3.141592653589793238462643 / 648000.0;
 
 std::string num(double v) {
   char buf[32];
@@ -424,7 +423,7 @@ void GearModel::error_scale(std::span<double> scale) const {
   // the nominal speed. atol acts on these near the zero crossings of an oscillating rate;
   // any smaller and the step size collapses there without the lines getting more accurate.
   const auto y0 = initial_state();
-  const double angle = std::max({kArcsec, dead_zone_.half_width(), std::abs(y0[L.twist])});
+  const double angle = std::max({kRadPerArcsec, dead_zone_.half_width(), std::abs(y0[L.twist])});
   const double omega_n = std::max(
       fastest_line_, j_eq_ > 0 && mean_stiffness_ > 0 ? std::sqrt(mean_stiffness_ / j_eq_) : 1.0);
   std::fill(scale.begin(), scale.end(), 1.0);

@@ -4,10 +4,10 @@
 #include <stdexcept>
 #include <string>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::model {
 namespace {
-
-constexpr double kArcsecPerRad = 648000.0 / 3.141592653589793238462643;
 
 // Integral of (A|s|^2 + B|s| + C) ds from 0 to x (x in arcsec): odd in x.
 double branch_integral(double a, double b, double c, double x_rad) noexcept {

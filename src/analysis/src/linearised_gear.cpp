@@ -8,10 +8,10 @@
 #include <stdexcept>
 #include <type_traits>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::analysis {
 namespace {
-
-constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
 
 // x >= 0 with curve(x) = torque for a curve rising from curve(0) = 0; bracket by doubling.
 double invert_rising(const std::function<double(double)>& curve, double torque, double scale) {
@@ -70,7 +70,7 @@ Tangent tangent_of(const model::HystereticBranchStiffness& law, double t) {
       [&](double x) { return branch_torque(law.a_unload, law.b_unload, law.c_unload, x); }, t, 1.0);
   const double kl = law.a_load * xl * xl + law.b_load * xl + law.c_load;
   const double ku = law.a_unload * xu * xu + law.b_unload * xu + law.c_unload;
-  return {0.5 * (kl + ku) * kArcsecPerRad, 0.5 * (xl + xu) / kArcsecPerRad,
+  return {0.5 * (kl + ku) * model::kArcsecPerRad, 0.5 * (xl + xu) / model::kArcsecPerRad,
           "mean of the loading and unloading branch tangents"};
 }
 Tangent tangent_of(const model::FadingMemoryStiffness& law, double t) {

@@ -524,7 +524,10 @@ BenchConfig default_simulated_bench_config() {
 }
 
 BenchConfig bench_config_from_argument(const std::string& sim_or_path) {
-  if (sim_or_path.empty() || sim_or_path == "sim") return default_simulated_bench_config();
+  // "sim" is the name of the release before (issue #23): an alias for one more release.
+  if (sim_or_path.empty() || sim_or_path == "simulated" || sim_or_path == "sim") {
+    return default_simulated_bench_config();
+  }
   return load_bench_config(sim_or_path);
 }
 

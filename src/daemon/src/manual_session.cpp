@@ -6,12 +6,13 @@
 #include <cmath>
 #include <numbers>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::daemon {
 
 namespace {
 
 constexpr double kRadPerSPerRpm = 2 * std::numbers::pi / 60;
-constexpr double kDegPerRad = 180 / std::numbers::pi;
 
 std::string number_text(double value) {
   if (!std::isfinite(value)) return std::isnan(value) ? "NaN" : (value > 0 ? "inf" : "-inf");
@@ -218,11 +219,11 @@ void ManualSession::do_go_to(bench::Bench& bench, double angle_deg, double speed
   const auto& sample = bench.latest_sample();
   const auto& sense = bench.description().sense;
   // The shorter way round: the difference to the angle within the turn, in (-180°, 180°].
-  const double here_deg = sample.theta_out_rad * kDegPerRad;
+  const double here_deg = sample.theta_out_rad * model::kDegPerRad;
   double delta_deg = std::remainder(angle_deg - here_deg, 360.0);
   if (delta_deg <= -180) delta_deg += 360;
   const double target_in =
-      sample.theta_in_rad + sense.ratio * sense.direction_sign * delta_deg / kDegPerRad;
+      sample.theta_in_rad + sense.ratio * sense.direction_sign * delta_deg / model::kDegPerRad;
   applied_.powered = true;
   {
     std::lock_guard lock(mutex_);

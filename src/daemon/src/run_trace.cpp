@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "wavebench/analysis/min_max_columns.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/model/gear_sense.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
@@ -19,7 +20,6 @@ namespace wavebench::daemon {
 
 namespace {
 
-constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
 constexpr double kNan = std::numeric_limits<double>::quiet_NaN();
 // Records read per page of samples.wbs (about 1.5 MB without extra channels).
 constexpr std::size_t kPageRecords = 16384;
@@ -275,7 +275,7 @@ double channel_value(const Channel& c, const storage::SyncSample& s,
     case Channel::Kind::kTe:
       if (!sense || !s.valid(storage::kThetaInValid) || !s.valid(storage::kThetaOutValid))
         return kNan;
-      return sense->transmission_error(s.theta_in_rad, s.theta_out_rad) * kArcsecPerRad;
+      return sense->transmission_error(s.theta_in_rad, s.theta_out_rad) * model::kArcsecPerRad;
   }
   return kNan;
 }

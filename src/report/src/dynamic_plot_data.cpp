@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "wavebench/analysis/min_max_envelope.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/report/averaged_spectrum.hpp"
 #include "wavebench/report/sample_log_scan.hpp"
 
@@ -14,7 +15,6 @@ namespace wavebench::report {
 namespace {
 
 namespace fs = std::filesystem;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 constexpr double kNoTime = -std::numeric_limits<double>::infinity();
 constexpr std::uint64_t kMaxBlocks = 4096;
 
@@ -122,7 +122,7 @@ std::optional<SteadyPart> steady_part_in_passes(const fs::path& log, const Sampl
     if (start) {
       const double a =
           (sense.model_output_angle(s.th_out) - sense.model_output_angle(part.first.th_out)) *
-          kDegPerRad;
+          model::kDegPerRad;
       lo = j == *start ? a : std::min(lo, a);
       hi = j == *start ? a : std::max(hi, a);
       s.angle_lo = lo;
@@ -199,7 +199,7 @@ std::optional<SteadyPart> steady_part_from_summary(const fs::path& log, const Sa
   part.count = last->i + 1 - start;
   const double a_last =
       (sense.model_output_angle(part.last.th_out) - sense.model_output_angle(part.first.th_out)) *
-      kDegPerRad;
+      model::kDegPerRad;
   part.angle_lo = std::min(0.0, a_last);
   part.angle_hi = std::max(0.0, a_last);
   return part;
@@ -291,7 +291,7 @@ std::optional<DynamicPlotData> dynamic_plot_data(const fs::path& log, const Samp
       spectrum_segment_samples(static_cast<std::size_t>(part->count), rate, input_hz / sense.ratio);
   const double out0 = sense.model_output_angle(part->first.th_out);
   const auto angle_of = [&](const AngleSample& s) {
-    return (sense.model_output_angle(s.th_out) - out0) * kDegPerRad;
+    return (sense.model_output_angle(s.th_out) - out0) * model::kDegPerRad;
   };
   const auto te_of = [&](const AngleSample& s) {
     return sense.transmission_error(s.th_in, s.th_out) * metrology::kArcsecPerRad;

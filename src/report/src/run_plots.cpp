@@ -8,13 +8,13 @@
 
 #include "wavebench/metrology/dynamic_te_analysis.hpp"
 #include "wavebench/metrology/lost_motion_fit.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/report/dynamic_plot_data.hpp"
 
 namespace wavebench::report {
 namespace {
 
 using nlohmann::json;
-constexpr double kDegPerRad = 180.0 / std::numbers::pi;
 // Cairo draws a few tens of thousands of points quickly; more only blurs into the same ink.
 constexpr std::size_t kMaxPlotPoints = 20000;
 
@@ -85,7 +85,7 @@ std::optional<DynamicTrace> dynamic_trace(const std::vector<storage::SyncSample>
     trace.time_s.push_back(t[i] - t[first]);
     trace.output_angle_deg.push_back(
         (sense.model_output_angle(th_out[i]) - sense.model_output_angle(th_out[first])) *
-        kDegPerRad);
+        model::kDegPerRad);
     trace.te_arcsec.push_back(sense.transmission_error(th_in[i], th_out[i]) *
                               metrology::kArcsecPerRad);
   }

@@ -4,11 +4,12 @@
 #include <cmath>
 #include <numbers>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::report {
 namespace {
 
 using nlohmann::json;
-constexpr double kArcminPerRad = 180.0 * 60.0 / std::numbers::pi;
 
 std::string num(const json& j, const std::string& key, int decimals) {
   const auto v = number(j, key);
@@ -161,7 +162,7 @@ void add_load_shift_rows(HtmlTable& table, const RunFolder& run, const RunCell& 
     push(table, run_cell,
          {text(s, "direction"), num(s, "load_nm", 1), num(s, "reference_load_nm", 1),
           pm(s, "shift_arcmin", 2), k ? gpm(s, "stiffness_nm_per_rad") : "\u2013",
-          k ? general(*k / kArcminPerRad) : "\u2013"});
+          k ? general(*k / model::kArcminPerRad) : "\u2013"});
   }
 }
 

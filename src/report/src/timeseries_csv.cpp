@@ -6,10 +6,10 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::report {
 namespace {
-
-constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
 
 struct Column {
   const char* name;
@@ -22,14 +22,14 @@ const Column kColumns[] = {
     {"theta1_rad", &model::SampledResponse::theta1, 1},
     {"omega1_rad_s", &model::SampledResponse::omega1, 1},
     {"theta2_dev_rad", &model::SampledResponse::theta2_dev, 1},
-    {"theta2_dev_arcsec", &model::SampledResponse::theta2_dev, kArcsecPerRad},
+    {"theta2_dev_arcsec", &model::SampledResponse::theta2_dev, model::kArcsecPerRad},
     {"omega2_rad_s", &model::SampledResponse::omega2, 1},
     {"alpha2_rad_s2", &model::SampledResponse::alpha2, 1},
     {"twist_rad", &model::SampledResponse::twist, 1},
-    {"twist_arcsec", &model::SampledResponse::twist, kArcsecPerRad},
+    {"twist_arcsec", &model::SampledResponse::twist, model::kArcsecPerRad},
     {"twist_rate_rad_s", &model::SampledResponse::twist_rate, 1},
     {"te_rad", &model::SampledResponse::te, 1},
-    {"te_arcsec", &model::SampledResponse::te, kArcsecPerRad},
+    {"te_arcsec", &model::SampledResponse::te, model::kArcsecPerRad},
     {"gear_torque_nm", &model::SampledResponse::gear_torque, 1},
     {"load_torque_nm", &model::SampledResponse::load_torque, 1},
     {"motor_torque_nm", &model::SampledResponse::motor_torque, 1},

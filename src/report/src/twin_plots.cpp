@@ -5,10 +5,10 @@
 #include <cstdio>
 #include <numbers>
 
+#include "wavebench/model/angle_units.hpp"
+
 namespace wavebench::report {
 namespace {
-
-constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
 
 std::vector<double> scaled(const std::vector<double>& v, double k) {
   std::vector<double> out(v.size());
@@ -39,7 +39,7 @@ std::string peak_text(const NamedPeak& p) {
 Figure time_response_figure(const model::SampledResponse& r, const std::string& title,
                             double zoom_seconds) {
   Figure fig(2, 2, title);
-  const auto te = scaled(r.te, kArcsecPerRad);
+  const auto te = scaled(r.te, model::kArcsecPerRad);
   fig.axes(0, 0).line(r.t, te).title = "Transmission error (whole record)";
   fig.axes(0, 0).x_label = "t [s]";
   fig.axes(0, 0).y_label = "TE [arcsec]";

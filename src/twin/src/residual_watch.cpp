@@ -8,12 +8,12 @@
 #include "wavebench/analysis/order_spectrum.hpp"
 #include "wavebench/analysis/peak_attribution.hpp"
 #include "wavebench/config/twin_case_writer.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/twin/twin_calibrator.hpp"
 
 namespace wavebench::twin {
 namespace {
 
-constexpr double kArcsec = std::numbers::pi / (180.0 * 3600.0);
 constexpr double kTwoPi = 2 * std::numbers::pi;
 
 double median(std::vector<double> v) {
@@ -29,7 +29,7 @@ double output_order(const model::TeTerm& t, double ratio) {
 }
 
 double arcsec(double rad) {
-  return rad / kArcsec;
+  return rad / model::kRadPerArcsec;
 }
 
 // Turned at a steady speed: of 32 equal parts of the revolution, at most two (a start's ramp)
@@ -352,7 +352,7 @@ void ResidualWatch::analyse_revolution() {
   // edges (a few samples wide at speed), so they measure the floor only without a defect.
   summary.floor_rad = options_.sensor_noise_rad > 0
                           ? options_.sensor_noise_rad
-                          : estimate_te_noise_floor_arcsec(window_) * kArcsec;
+                          : estimate_te_noise_floor_arcsec(window_) * model::kRadPerArcsec;
   const int nyquist = static_cast<int>(rs.amplitude.size()) - 1;
   const int max_order = options_.max_order > 0 ? std::min(options_.max_order, nyquist) : nyquist;
   const auto lines =

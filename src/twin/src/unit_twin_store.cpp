@@ -9,13 +9,12 @@
 
 #include "wavebench/analysis/amplitude_spectrum.hpp"
 #include "wavebench/config/twin_case_writer.hpp"
+#include "wavebench/model/angle_units.hpp"
 #include "wavebench/storage/atomic_file.hpp"
 #include "wavebench/storage/sample_log.hpp"
 
 namespace wavebench::twin {
 namespace {
-
-constexpr double kRadPerArcmin = std::numbers::pi / (180.0 * 60.0);
 
 // A figure of results.json: a number or an uncertain figure's "value".
 std::optional<double> figure(const nlohmann::json& j) {
@@ -46,7 +45,8 @@ UnitTwinStart loop_start(const std::filesystem::path& results_file) {
     }
   }
   if (t.contains("backlash_arcmin")) {
-    if (const auto b = figure(t["backlash_arcmin"])) start.loop_backlash_rad = *b * kRadPerArcmin;
+    if (const auto b = figure(t["backlash_arcmin"]))
+      start.loop_backlash_rad = *b * model::kRadPerArcmin;
   }
   return start;
 }

@@ -5,10 +5,9 @@
 #include <cmath>
 #include <numbers>
 
-namespace wavebench::model {
+#include "wavebench/model/angle_units.hpp"
 
-inline constexpr double kArcminPerRad = 180.0 * 60.0 / std::numbers::pi;
-inline constexpr double kArcsecPerRad = 180.0 * 3600.0 / std::numbers::pi;
+namespace wavebench::model {
 
 struct GearSense {
   double ratio = 0;        // N > 0

@@ -145,7 +145,7 @@ BenchConfig parse_bench_config(const std::string& yaml_text, const std::filesyst
 // configs/benches/sim.yaml (the default where no hardware is named) of $WAVEBENCH_CONFIG_DIR,
 // else of the source tree.
 BenchConfig default_simulated_bench_config();
-// "sim" -> the default simulated bench; anything else is a file path.
+// "simulated" (or its old name "sim") -> the default simulated bench; anything else is a file path.
 BenchConfig bench_config_from_argument(const std::string& sim_or_path);
 
 }  // namespace wavebench::bench

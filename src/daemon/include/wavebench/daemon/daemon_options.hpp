@@ -21,7 +21,7 @@ ListenAddress parse_listen_address(const std::string& text);
 bool is_loopback(const ListenAddress& address);
 
 struct DaemonOptions {
-  std::string config;  // a bench config file, or "sim"
+  std::string config;  // a bench config file, or "simulated" ("sim": its old name)
   std::filesystem::path runs_dir = "runs";
   ListenAddress listen;
   std::filesystem::path token_file;  // empty: default_token_file()
