@@ -7,6 +7,7 @@
 
 #include <filesystem>
 
+#include "../support/simulated_devices_gear.hpp"
 #include "plant_bench.hpp"
 #include "wavebench/simdevices/bench_plant.hpp"
 #include "wavebench/storage/run_store.hpp"
@@ -58,7 +59,7 @@ class RecordingStagesTest : public ::testing::Test {
 
   std::filesystem::path root_;
   std::unique_ptr<storage::RunStore> store_;
-  testing::PlantBench bench_{simdevices::default_bench_gear()};
+  testing::PlantBench bench_{wavebench::testing::simulated_devices_gear()};
 };
 
 TEST_F(RecordingStagesTest, TheLoopsStagesInOrderHeadLogTwin) {
